@@ -1,0 +1,39 @@
+// A small command-line parser: flags are taken out of the list by name, and
+// whatever is left over is an error, so a typo never passes silently.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "horopter/stereo_params.hpp"
+
+namespace horopter::cli {
+
+class Args {
+ public:
+  Args(int argc, char** argv, int first);
+
+  // True (and removed) if `name` is present.
+  bool flag(const std::string& name);
+  // The value after `name` ("--x 3" or "--x=3"), removed; nullopt if absent.
+  std::optional<std::string> value(const std::string& name);
+  int intValue(const std::string& name, int fallback);
+  double doubleValue(const std::string& name, double fallback);
+  std::string stringValue(const std::string& name, const std::string& fallback);
+  // The remaining positional arguments (those not starting with "--"), removed.
+  std::vector<std::string> positionals();
+  // Throws horopter::Error if anything is left: an unknown flag or extra argument.
+  void finish(const std::string& command) const;
+
+ private:
+  std::vector<std::string> args_;
+};
+
+// The stereo flags every command shares (kebab-case names of StereoParams).
+StereoParams parseStereoFlags(Args& args, StereoParams defaults);
+MedianParams parseMedianFlags(Args& args, MedianParams defaults);
+// Help text for those flags, with the defaults.
+std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median);
+
+}  // namespace horopter::cli

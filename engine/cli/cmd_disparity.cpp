@@ -1,0 +1,143 @@
+// `horopter disparity` and `horopter run`: the front end on one stereo pair,
+// written to image files.
+#include <cstdio>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "commands.hpp"
+#include "default_input.hpp"
+#include "horopter/error.hpp"
+#include "horopter/frontend.hpp"
+#include "horopter/geometry.hpp"
+#include "horopter/opencv.hpp"
+#include "io/disparity_images.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+struct PairJob {
+  std::string left, right, outDir;
+  StereoParams stereo;
+  MedianParams median;
+  std::string backend = "auto";
+  double fixationDisparity = 0;  // px; 0 = the middle of the search range
+  double focalPx = 0;            // 0 = the image width
+};
+
+cv::Mat loadColour(const std::string& path, const char* what) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty())
+    throw Error(std::string(what) + " '" + path + "' does not exist or could not be decoded");
+  return image;
+}
+
+int runPair(const PairJob& job) {
+  const cv::Mat leftColour = loadColour(job.left, "left image");
+  const cv::Mat rightColour = loadColour(job.right, "right image");
+  if (leftColour.size() != rightColour.size())
+    throw Error("left image is " + std::to_string(leftColour.cols) + "x" +
+                std::to_string(leftColour.rows) + " but right image is " +
+                std::to_string(rightColour.cols) + "x" + std::to_string(rightColour.rows) +
+                ": a rectified pair has one size");
+  cv::Mat left, right;
+  cv::cvtColor(leftColour, left, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(rightColour, right, cv::COLOR_BGR2GRAY);
+
+  const Backend& backend = findBackend(job.backend);
+  StereoFrontend frontend(job.stereo, job.median, backend);
+  std::cerr << "horopter: " << left.cols << "x" << left.rows << ", disparities "
+            << job.stereo.minDisparity << ".."
+            << job.stereo.minDisparity + job.stereo.numDisparities - 1 << ", block "
+            << job.stereo.blockSize << ", backend " << backend.name << "\n";
+  frontend.computeDisparity(viewOf(left), viewOf(right));
+
+  RectifiedGeometry geometry;
+  geometry.focalPx = job.focalPx > 0 ? job.focalPx : left.cols;
+  geometry.cx = (left.cols - 1) / 2.0;
+  geometry.baseline = 1.0;  // thresholds in pixels do not depend on the unit
+  const double fixation = job.fixationDisparity > 0
+                              ? job.fixationDisparity
+                              : job.stereo.minDisparity + job.stereo.numDisparities / 2.0;
+  const auto thresholds = horopterThresholds(
+      geometry, left.cols, fixationFromDisparity(geometry, geometry.cx, fixation));
+  frontend.computeMask(thresholds, viewOf(leftColour));
+  writeFrontendOutputs(job.outDir, frontend);
+
+  const auto& t = frontend.timings();
+  const cv::Mat mask = matOf(frontend.mask());
+  const double inside = 100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total());
+  std::printf(
+      "front end %.1f ms (prefilter %.1f, match %.1f, cleanup %.1f, median %.1f, mask %.1f)\n"
+      "horopter: fixation disparity %.1f px at the centre column; %.1f%% of pixels inside\n"
+      "wrote %s/{disparity.png, disparity_color.png, mask.png, segmented.png}\n",
+      t.total(), t.prefilter, t.match, t.cleanup, t.median, t.mask, fixation, inside,
+      job.outDir.c_str());
+  return 0;
+}
+
+const char* kPairHelpTail =
+    "Horopter zone:\n"
+    "  --fixation-disparity D   disparity (px) of the fixation point on the centre column;\n"
+    "                           the Vieth-Mueller circle passes through it and both cameras\n"
+    "                           (default: the middle of the search range)\n"
+    "  --focal-px F             focal length of the rectified pair (default: image width)\n"
+    "Other:\n"
+    "  --backend B              scalar or auto (default auto; see horopter devices)\n"
+    "  -o, --out DIR            output folder (default out)\n"
+    "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid), DIR/disparity_color.png\n"
+    "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
+    "DIR/segmented.png (the left image, zeroed outside the zone).\n";
+
+void parseCommon(Args& args, PairJob& job) {
+  job.stereo = parseStereoFlags(args, job.stereo);
+  job.median = parseMedianFlags(args, job.median);
+  job.backend = args.stringValue("--backend", job.backend);
+  job.fixationDisparity = args.doubleValue("--fixation-disparity", 0);
+  job.focalPx = args.doubleValue("--focal-px", 0);
+  job.outDir = args.stringValue("-o", args.stringValue("--out", "out"));
+}
+
+}  // namespace
+
+int runDisparity(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << "Usage: horopter disparity LEFT RIGHT [-o DIR] [options]\n\n"
+                 "Runs the front end (x-Sobel prefilter, SAD matching, left-right check,\n"
+                 "speckle filter, hole-filling median, horopter mask) on a rectified pair.\n\n"
+              << stereoFlagsHelp(StereoParams{}, MedianParams{}) << kPairHelpTail;
+    return 0;
+  }
+  PairJob job;
+  parseCommon(args, job);
+  const auto files = args.positionals();
+  args.finish("disparity");
+  if (files.size() != 2)
+    throw Error("horopter disparity needs LEFT and RIGHT image paths, got " +
+                std::to_string(files.size()) + " path(s): see horopter disparity --help");
+  job.left = files[0];
+  job.right = files[1];
+  return runPair(job);
+}
+
+int runMainJob(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << "Usage: horopter run [-o DIR] [options]\n\n"
+                 "The main job on the built-in default input: Middlebury's Aloe pair from\n"
+                 "Debian's opencv-doc (1282x1110, disparities 43..211), with 224 disparities.\n\n"
+              << stereoFlagsHelp(StereoParams{}, MedianParams{}) << kPairHelpTail;
+    return 0;
+  }
+  PairJob job;
+  job.stereo.numDisparities = 224;  // Aloe's disparities reach 211 px
+  parseCommon(args, job);
+  args.finish("run");
+  const StereoPairFiles pair = defaultStereoPair();
+  std::cerr << "horopter: default input " << pair.left << " + " << pair.right << "\n";
+  job.left = pair.left;
+  job.right = pair.right;
+  return runPair(job);
+}
+
+}  // namespace horopter::cli

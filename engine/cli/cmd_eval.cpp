@@ -1,0 +1,105 @@
+// `horopter eval-stereo`: accuracy against ground truth, with cv::StereoBM
+// measured beside Horopter in the same run.
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include "commands.hpp"
+#include "horopter/error.hpp"
+#include "horopter/stereo_eval.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+std::string json(const StereoScores& s) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "{\"bad1\": %.4f, \"bad2\": %.4f, \"avgerr\": %.4f, \"density\": %.4f, "
+                "\"ms\": %.3f, \"backend\": \"%s\"}",
+                s.bad1, s.bad2, s.avgerr, s.density, s.ms, s.backend.c_str());
+  return buf;
+}
+
+void printRow(const char* who, const StereoScores& s) {
+  std::printf("%-10s %-16s %8.2f %8.2f %8.3f %8.2f %10.2f\n", who, s.backend.c_str(), s.bad1,
+              s.bad2, s.avgerr, s.density, s.ms);
+}
+
+}  // namespace
+
+int runEvalStereo(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout
+        << "Usage: horopter eval-stereo --left L --right R --gt GT --gt-scale S [options]\n\n"
+           "Scores Horopter's disparity (the front end through the median) against ground\n"
+           "truth: bad-1.0 and bad-2.0 (% of pixels with ground truth whose error exceeds 1 or\n"
+           "2 px; invalid outputs count as bad), avgerr (mean |error| in px over valid outputs),\n"
+           "density (% of pixels with ground truth that have a valid output) and ms per frame.\n"
+           "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown.\n\n"
+        << stereoFlagsHelp(StereoParams{}, MedianParams{})
+        << "Other:\n"
+           "  --backend B              scalar or auto (default auto)\n"
+           "  --peer opencv            also run cv::StereoBM with the same parameters\n"
+           "  --runs N                 timed runs per method, after one warm-up (default 3)\n"
+           "  --json                   print one JSON object {\"horopter\": {...}, \"opencv\": "
+           "{...}}\n"
+           "  --require-peer-parity    exit 1 if Horopter's bad-2.0 is worse than the peer's\n";
+    return 0;
+  }
+  const std::string left = args.stringValue("--left", "");
+  const std::string right = args.stringValue("--right", "");
+  const std::string gt = args.stringValue("--gt", "");
+  const double scale = args.doubleValue("--gt-scale", 0);
+  const StereoParams stereo = parseStereoFlags(args, StereoParams{});
+  const MedianParams median = parseMedianFlags(args, MedianParams{});
+  const std::string backendName = args.stringValue("--backend", "auto");
+  const std::string peer = args.stringValue("--peer", "");
+  EvalOptions options;
+  options.timedRuns = args.intValue("--runs", 3);
+  const bool asJson = args.flag("--json");
+  const bool requireParity = args.flag("--require-peer-parity");
+  args.finish("eval-stereo");
+
+  if (left.empty() || right.empty() || gt.empty())
+    throw Error("eval-stereo needs --left, --right and --gt: see horopter eval-stereo --help");
+  if (scale <= 0)
+    throw Error("eval-stereo needs --gt-scale S > 0 (disparity = ground-truth value / S)");
+  if (!peer.empty() && peer != "opencv")
+    throw Error("unknown peer '" + peer + "': the only peer is opencv");
+  if (requireParity && peer.empty()) throw Error("--require-peer-parity needs --peer opencv");
+  if (options.timedRuns < 1 || options.timedRuns > 1000)
+    throw Error("--runs must be within 1..1000");
+
+  const cv::Mat l = loadGrey(left, "left image");
+  const cv::Mat r = loadGrey(right, "right image");
+  const cv::Mat g = loadGroundTruth(gt, scale);
+  const Backend& backend = findBackend(backendName);
+  const StereoScores ours = evaluateHoropter(l, r, g, stereo, median, backend, options);
+  std::optional<StereoScores> theirs;
+  if (!peer.empty()) {
+    if (stereo.preFilterType != PreFilterType::XSobel)
+      std::cerr << "horopter: note: cv::StereoBM has no unfiltered mode; the peer runs with its "
+                   "normalized-response prefilter\n";
+    theirs = evaluateOpenCvStereoBM(l, r, g, stereo, options);
+  }
+
+  if (asJson) {
+    std::printf("{\"horopter\": %s", json(ours).c_str());
+    if (theirs) std::printf(", \"opencv\": %s", json(*theirs).c_str());
+    std::printf("}\n");
+  } else {
+    std::printf("%-10s %-16s %8s %8s %8s %8s %10s\n", "", "backend", "bad1%", "bad2%", "avgerr",
+                "density%", "ms/frame");
+    printRow("horopter", ours);
+    if (theirs) printRow("opencv", *theirs);
+  }
+  if (requireParity && theirs && ours.bad2 > theirs->bad2) {
+    std::fprintf(stderr, "horopter: bad-2.0 %.2f%% is worse than cv::StereoBM's %.2f%%\n",
+                 ours.bad2, theirs->bad2);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace horopter::cli

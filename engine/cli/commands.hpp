@@ -1,0 +1,14 @@
+// The subcommands of the `horopter` tool. Each returns the process exit code
+// and throws horopter::Error for bad input.
+#pragma once
+
+#include "args.hpp"
+
+namespace horopter::cli {
+
+int runMainJob(Args& args);
+int runDisparity(Args& args);
+int runEvalStereo(Args& args);
+int runDevices(Args& args);
+
+}  // namespace horopter::cli

@@ -1,0 +1,47 @@
+// The `horopter` command-line tool.
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "commands.hpp"
+#include "horopter/error.hpp"
+
+namespace {
+
+const char* kUsage =
+    "Usage: horopter COMMAND [options]   (horopter COMMAND --help for its options)\n\n"
+    "Horopter: a stereo vision engine that keeps only what lies inside the robot's zone\n"
+    "of interaction (the Vieth-Mueller circle through both cameras and the fixation point).\n\n"
+    "Commands:\n"
+    "  run           the main job on the built-in default input (the Aloe pair) -> out/\n"
+    "  disparity     disparity, cleanup, median and horopter mask of a rectified pair\n"
+    "  eval-stereo   accuracy against ground truth, cv::StereoBM beside us (--peer opencv)\n"
+    "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace horopter::cli;
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+      !std::strcmp(argv[1], "help")) {
+    std::cout << kUsage;
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  Args args(argc, argv, 2);
+  try {
+    if (command == "run") return runMainJob(args);
+    if (command == "disparity") return runDisparity(args);
+    if (command == "eval-stereo") return runEvalStereo(args);
+    if (command == "devices") return runDevices(args);
+    std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
+    return 2;
+  } catch (const horopter::Error& e) {
+    std::cerr << "horopter " << command << ": error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "horopter " << command << ": unexpected error: " << e.what() << "\n";
+    return 1;
+  }
+}

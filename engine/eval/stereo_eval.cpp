@@ -1,0 +1,140 @@
+#include "horopter/stereo_eval.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "horopter/error.hpp"
+#include "horopter/frontend.hpp"
+#include "horopter/opencv.hpp"
+
+namespace horopter {
+
+namespace {
+
+void requireFile(const std::string& path, const char* what) {
+  if (!std::filesystem::is_regular_file(path))
+    throw Error(std::string(what) + " '" + path + "' does not exist or is not a file");
+}
+
+// Times `run` (after warm-up runs) and returns the mean milliseconds.
+template <typename Fn>
+double timeRuns(const EvalOptions& options, Fn&& run) {
+  for (int i = 0; i < options.warmupRuns; ++i)
+    run();
+  const int runs = std::max(1, options.timedRuns);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < runs; ++i)
+    run();
+  const std::chrono::duration<double, std::milli> elapsed =
+      std::chrono::steady_clock::now() - start;
+  return elapsed.count() / runs;
+}
+
+void checkPair(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx) {
+  if (left.size() != right.size())
+    throw Error("left and right images differ in size: rectify them to one size");
+  if (gtPx.size() != left.size())
+    throw Error("ground truth is " + std::to_string(gtPx.cols) + "x" + std::to_string(gtPx.rows) +
+                " but the images are " + std::to_string(left.cols) + "x" +
+                std::to_string(left.rows));
+}
+
+}  // namespace
+
+cv::Mat loadGrey(const std::string& path, const char* what) {
+  requireFile(path, what);
+  cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (grey.empty()) throw Error(std::string(what) + " '" + path + "' could not be decoded");
+  return grey;
+}
+
+cv::Mat loadGroundTruth(const std::string& path, double scale) {
+  if (!(scale > 0))
+    throw Error("ground-truth scale must be positive, got " + std::to_string(scale));
+  requireFile(path, "ground truth");
+  const cv::Mat raw = cv::imread(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  if (raw.empty()) throw Error("ground truth '" + path + "' could not be decoded");
+  if (raw.depth() != CV_8U && raw.depth() != CV_16U)
+    throw Error("ground truth '" + path + "' must be 8- or 16-bit");
+  cv::Mat px;
+  raw.convertTo(px, CV_32F, 1.0 / scale);
+  return px;
+}
+
+StereoScores scoreDisparity(const ConstImageView& disparity, std::int16_t invalid,
+                            const cv::Mat& groundTruthPx) {
+  checkView(disparity, PixelType::S16C1, "disparity");
+  if (groundTruthPx.type() != CV_32FC1 || groundTruthPx.cols != disparity.width ||
+      groundTruthPx.rows != disparity.height)
+    throw Error("ground truth must be CV_32FC1 of the disparity's size");
+  long known = 0, valid = 0, bad1 = 0, bad2 = 0;
+  double errorSum = 0;
+  for (int y = 0; y < disparity.height; ++y) {
+    const auto* d = disparity.row<std::int16_t>(y);
+    const auto* gt = groundTruthPx.ptr<float>(y);
+    for (int x = 0; x < disparity.width; ++x) {
+      if (!(gt[x] > 0)) continue;
+      ++known;
+      if (d[x] == invalid) {
+        ++bad1;
+        ++bad2;
+        continue;
+      }
+      ++valid;
+      const double error = std::abs(d[x] / static_cast<double>(kDisparityScale) - gt[x]);
+      errorSum += error;
+      bad1 += error > 1.0;
+      bad2 += error > 2.0;
+    }
+  }
+  StereoScores s;
+  if (known == 0) throw Error("ground truth has no known pixel (all zero)");
+  s.bad1 = 100.0 * bad1 / known;
+  s.bad2 = 100.0 * bad2 / known;
+  s.density = 100.0 * valid / known;
+  s.avgerr = valid > 0 ? errorSum / valid : 0.0;
+  return s;
+}
+
+StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
+                              const StereoParams& params, const MedianParams& median,
+                              const Backend& backend, const EvalOptions& options) {
+  checkPair(left, right, gtPx);
+  StereoFrontend frontend(params, median, backend);
+  const double ms =
+      timeRuns(options, [&] { frontend.computeDisparity(viewOf(left), viewOf(right)); });
+  StereoScores s = scoreDisparity(frontend.disparity().view(), invalidDisparity(params), gtPx);
+  s.ms = ms;
+  s.backend = backend.name;
+  return s;
+}
+
+StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
+                                    const StereoParams& params, const EvalOptions& options) {
+  checkPair(left, right, gtPx);
+  validate(params);
+  if (params.blockSize < 5)
+    throw Error("cv::StereoBM needs blockSize >= 5, got " + std::to_string(params.blockSize));
+  auto bm = cv::StereoBM::create(params.numDisparities, params.blockSize);
+  bm->setMinDisparity(params.minDisparity);
+  bm->setPreFilterType(params.preFilterType == PreFilterType::XSobel
+                           ? cv::StereoBM::PREFILTER_XSOBEL
+                           : cv::StereoBM::PREFILTER_NORMALIZED_RESPONSE);
+  bm->setPreFilterCap(params.preFilterCap);
+  bm->setTextureThreshold(params.textureThreshold);
+  bm->setUniquenessRatio(params.uniquenessRatio);
+  bm->setDisp12MaxDiff(params.disp12MaxDiff);
+  bm->setSpeckleWindowSize(params.speckleWindowSize);
+  bm->setSpeckleRange(params.speckleRange);
+  cv::Mat disparity;
+  const double ms = timeRuns(options, [&] { bm->compute(left, right, disparity); });
+  StereoScores s = scoreDisparity(viewOf(disparity), invalidDisparity(params), gtPx);
+  s.ms = ms;
+  s.backend = "opencv-stereobm";
+  return s;
+}
+
+}  // namespace horopter

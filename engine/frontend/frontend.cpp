@@ -1,0 +1,103 @@
+#include "horopter/frontend.hpp"
+
+#include <chrono>
+
+#include "horopter/error.hpp"
+#include "horopter/kernels.hpp"
+
+namespace horopter {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
+                               const Backend& backend)
+    : stereo_(stereo), median_(median), backend_(&backend) {
+  validate(stereo_);
+  validate(median_);
+}
+
+void StereoFrontend::allocate(int width, int height) {
+  if (clean_.width() == width && clean_.height() == height) return;
+  leftFiltered_ = Image(width, height, PixelType::U8C1);
+  rightFiltered_ = Image(width, height, PixelType::U8C1);
+  texture_ = Image(width, height, PixelType::U8C1);
+  clean_ = Image(width, height, PixelType::S16C1);
+  winnerRight_ = Image(width, height, PixelType::S16C1);
+  median_out_ = Image(width, height, PixelType::S16C1);
+  mask_ = Image();
+  segmented_ = Image();
+}
+
+const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
+                                              const ConstImageView& right) {
+  checkView(left, PixelType::U8C1, "left image");
+  checkView(right, PixelType::U8C1, "right image");
+  checkSameSize(left, "left image", right, "right image");
+  allocate(left.width, left.height);
+  timings_ = {};
+
+  auto start = Clock::now();
+  const bool xsobel = stereo_.preFilterType == PreFilterType::XSobel;
+  const bool wantTexture = stereo_.textureThreshold > 0;
+  ConstImageView matchLeft = left;
+  ConstImageView matchRight = right;
+  if (xsobel) {
+    prefilterXSobel(left, stereo_.preFilterCap, leftFiltered_.view(),
+                    wantTexture ? texture_.view() : ImageView{}, *backend_);
+    prefilterXSobel(right, stereo_.preFilterCap, rightFiltered_.view(), {}, *backend_);
+    matchLeft = leftFiltered_.view();
+    matchRight = rightFiltered_.view();
+  } else if (wantTexture) {
+    prefilterXSobel(left, stereo_.preFilterCap, {}, texture_.view(), *backend_);
+  }
+  timings_.prefilter = msSince(start);
+
+  start = Clock::now();
+  matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, stereo_,
+              clean_.view(), winnerRight_.view(), *backend_);
+  timings_.match = msSince(start);
+
+  start = Clock::now();
+  leftRightCheck(clean_.view(), winnerRight_.view(), stereo_, *backend_);
+  filterSpeckles(clean_.view(), stereo_, *backend_);
+  timings_.cleanup = msSince(start);
+
+  if (median_.kernelSize > 0) {
+    start = Clock::now();
+    medianFilter(clean_.view(), median_out_.view(), median_, invalidDisparity(stereo_), *backend_);
+    timings_.median = msSince(start);
+  }
+  return disparity();
+}
+
+const Image& StereoFrontend::disparity() const {
+  return median_.kernelSize > 0 ? median_out_ : clean_;
+}
+
+void StereoFrontend::computeMask(std::span<const std::int16_t> thresholds,
+                                 const ConstImageView& image) {
+  if (clean_.empty()) throw Error("StereoFrontend::computeMask: call computeDisparity first");
+  const auto start = Clock::now();
+  const bool segment = !image.empty();
+  if (mask_.width() != clean_.width() || mask_.height() != clean_.height())
+    mask_ = Image(clean_.width(), clean_.height(), PixelType::U8C1);
+  if (segment) {
+    checkViewOneOf(image, {PixelType::U8C1, PixelType::U8C3}, "image to segment");
+    if (segmented_.width() != image.width || segmented_.height() != image.height ||
+        segmented_.type() != image.type)
+      segmented_ = Image(image.width, image.height, image.type);
+  }
+  horopterMask(disparity().view(), thresholds, invalidDisparity(stereo_), mask_.view(), image,
+               segment ? segmented_.view() : ImageView{}, *backend_);
+  timings_.mask = msSince(start);
+}
+
+}  // namespace horopter

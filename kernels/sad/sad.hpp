@@ -1,0 +1,25 @@
+// Per-backend entry points of SAD block matching (arguments pre-validated),
+// and the geometry every backend shares.
+#pragma once
+
+#include "horopter/image.hpp"
+#include "horopter/stereo_params.hpp"
+
+namespace horopter {
+
+// The pixels where every disparity of the range can be evaluated with the
+// whole window inside both images: rows [y0, y1), columns [x0, x1). Empty
+// (x0 >= x1 or y0 >= y1) when the image is too small for the range.
+struct MatchRegion {
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+};
+MatchRegion matchRegion(int width, int height, const StereoParams& params);
+
+namespace scalar {
+void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                 const ConstImageView& texture, const StereoParams& params,
+                 const ImageView& disparity, const ImageView& winnerRight);
+}  // namespace scalar
+
+}  // namespace horopter

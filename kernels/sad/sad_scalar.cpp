@@ -1,0 +1,197 @@
+// Scalar reference of SAD block matching: THE SPECIFICATION.
+//
+// Semantics
+//   Inputs: left L and right R, U8C1, W x H (prefiltered or raw); texture T,
+//   U8C1 (read only when textureThreshold > 0). r = blockSize / 2.
+//   Disparities d = minDisparity .. maxD, maxD = minDisparity + numDisparities - 1.
+//   A left pixel (x, y) matches the right pixel (x - d, y).
+//
+//   Region (matchRegion): rows y in [r, H - r); columns x in [x0, x1) with
+//   x0 = max(r, r + maxD) and x1 = min(W - r, W - r + minDisparity), so every
+//   window of every disparity lies inside both images. Outside the region the
+//   disparity is invalid ((minDisparity - 1) * 16) and winnerRight is
+//   minDisparity - 1.
+//
+//   Cost: C(x, y, d) = sum over |i|, |j| <= r of |L(x+i, y+j) - R(x+i-d, y+j)|,
+//   exact in int32 (at most 255 * 255^2 < 2^31).
+//
+//   Winner: b = the d of least cost; ties go to the smallest d.
+//
+//   Texture: if textureThreshold > 0 and the window sum of T around (x, y) is
+//   < textureThreshold, the pixel is invalid.
+//
+//   Uniqueness: if uniquenessRatio > 0, let t = C(b) + C(b) * uniquenessRatio / 100
+//   (integer division, 64-bit). The pixel is invalid if some d with |d - b| > 1
+//   has C(d) <= t.
+//
+//   Sub-pixel (equiangular line fit, integers only): c0 = C(b),
+//   cm = C(b - 1), cp = C(b + 1); at the ends of the range the missing side
+//   mirrors the other one (cm = cp), which gives offset 0.
+//     den = cm + cp - 2 c0 + |cm - cp|          (>= 0)
+//     off = den > 0 ? (cm - cp) * 256 / den : 0 (64-bit, truncated toward 0;
+//                                                |off| <= 128)
+//     disparity = (b * 256 + off + 8) >> 4      (arithmetic shift: floor)
+//   i.e. 1/16 px, rounded to nearest with halves up.
+//
+//   Texture and uniqueness are checked in that order; the result is the same
+//   whichever fails first.
+//
+//   Right winner (for the left-right check, from the same costs): for the
+//   right pixel (xr, y), the d of least C(xr + d, y, d) over the d whose left
+//   pixel xr + d lies in the region's columns; ties go to the smallest d;
+//   minDisparity - 1 where no d qualifies. Texture and uniqueness play no part.
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#include "sad/sad.hpp"
+
+namespace horopter {
+
+MatchRegion matchRegion(int width, int height, const StereoParams& params) {
+  const int r = params.blockSize / 2;
+  const int maxD = params.minDisparity + params.numDisparities - 1;
+  MatchRegion region;
+  region.x0 = std::max(r, r + maxD);
+  region.x1 = std::min(width - r, width - r + params.minDisparity);
+  region.y0 = r;
+  region.y1 = height - r;
+  return region;
+}
+
+namespace scalar {
+
+namespace {
+
+// Decides one left pixel from its costs over the range (costs[k] is the cost
+// of disparity minDisparity + k). Returns the disparity in 1/16 px or invalid.
+std::int16_t decidePixel(const std::int32_t* costs, int textureSum, const StereoParams& params) {
+  const int count = params.numDisparities;
+  const std::int16_t invalid = invalidDisparity(params);
+
+  int best = 0;
+  for (int k = 1; k < count; ++k) {
+    if (costs[k] < costs[best]) best = k;  // strict: the smallest d wins ties
+  }
+
+  if (params.textureThreshold > 0 && textureSum < params.textureThreshold) return invalid;
+
+  if (params.uniquenessRatio > 0) {
+    const std::int64_t c0 = costs[best];
+    const std::int64_t limit = c0 + c0 * params.uniquenessRatio / 100;
+    for (int k = 0; k < count; ++k) {
+      if (std::abs(k - best) > 1 && costs[k] <= limit) return invalid;
+    }
+  }
+
+  const std::int64_t c0 = costs[best];
+  std::int64_t cm = best > 0 ? costs[best - 1] : costs[best + 1];
+  std::int64_t cp = best < count - 1 ? costs[best + 1] : costs[best - 1];
+  const std::int64_t den = cm + cp - 2 * c0 + std::abs(cm - cp);
+  const std::int64_t off = den > 0 ? (cm - cp) * 256 / den : 0;
+  const std::int64_t d = params.minDisparity + best;
+  return static_cast<std::int16_t>((d * 256 + off + 8) >> 4);
+}
+
+}  // namespace
+
+void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                 const ConstImageView& texture, const StereoParams& params,
+                 const ImageView& disparity, const ImageView& winnerRight) {
+  const int width = left.width;
+  const int height = left.height;
+  const int r = params.blockSize / 2;
+  const int count = params.numDisparities;
+  const int minD = params.minDisparity;
+  const std::int16_t invalid = invalidDisparity(params);
+  const auto noWinner = static_cast<std::int16_t>(minD - 1);
+
+  for (int y = 0; y < height; ++y) {
+    std::fill_n(disparity.row<std::int16_t>(y), width, invalid);
+    std::fill_n(winnerRight.row<std::int16_t>(y), width, noWinner);
+  }
+  const MatchRegion region = matchRegion(width, height, params);
+  if (region.empty()) return;
+
+  // Column sums over the window's height, for the columns the windows of the
+  // region touch: columnCost[k * width + x] = sum over |j| <= r of
+  // |L(x, y+j) - R(x - d, y+j)|, and columnTexture[x] = sum of T(x, y+j).
+  // They slide down one row at a time: add the row entering the window,
+  // subtract the row leaving it.
+  const int xa = region.x0 - r;
+  const int xb = region.x1 + r;  // columns [xa, xb)
+  std::vector<std::int32_t> columnCost(static_cast<std::size_t>(count) * width, 0);
+  std::vector<std::int32_t> columnTexture(width, 0);
+  const bool useTexture = params.textureThreshold > 0;
+
+  auto addRow = [&](int row, int sign) {
+    const auto* l = left.row<std::uint8_t>(row);
+    const auto* rr = right.row<std::uint8_t>(row);
+    for (int k = 0; k < count; ++k) {
+      const int d = minD + k;
+      std::int32_t* col = &columnCost[static_cast<std::size_t>(k) * width];
+      for (int x = xa; x < xb; ++x)
+        col[x] += sign * std::abs(l[x] - rr[x - d]);
+    }
+    if (useTexture) {
+      const auto* t = texture.row<std::uint8_t>(row);
+      for (int x = xa; x < xb; ++x)
+        columnTexture[x] += sign * t[x];
+    }
+  };
+  for (int j = region.y0 - r; j <= region.y0 + r; ++j)
+    addRow(j, +1);
+
+  std::vector<std::int32_t> costs(static_cast<std::size_t>(count) * width);  // [x][k]
+  std::vector<std::int32_t> rightBestCost(width);
+  for (int y = region.y0; y < region.y1; ++y) {
+    if (y > region.y0) {
+      addRow(y + r, +1);
+      addRow(y - r - 1, -1);
+    }
+
+    // Window sums along the row, for every region column: a running sum that
+    // takes in the column entering the window and drops the one leaving it.
+    for (int k = 0; k < count; ++k) {
+      const std::int32_t* col = &columnCost[static_cast<std::size_t>(k) * width];
+      std::int32_t sum = 0;
+      for (int i = -r; i <= r; ++i)
+        sum += col[region.x0 + i];
+      for (int x = region.x0; x < region.x1; ++x) {
+        if (x > region.x0) sum += col[x + r] - col[x - r - 1];
+        costs[static_cast<std::size_t>(x) * count + k] = sum;
+      }
+    }
+
+    auto* outDisparity = disparity.row<std::int16_t>(y);
+    for (int x = region.x0; x < region.x1; ++x) {
+      int textureSum = 0;
+      if (useTexture) {
+        for (int i = -r; i <= r; ++i)
+          textureSum += columnTexture[x + i];
+      }
+      outDisparity[x] =
+          decidePixel(&costs[static_cast<std::size_t>(x) * count], textureSum, params);
+    }
+
+    // The right view's winner: left pixels in increasing x reach each right
+    // pixel in increasing d, so a strict < keeps the smallest d on ties.
+    auto* outWinner = winnerRight.row<std::int16_t>(y);
+    std::fill(rightBestCost.begin(), rightBestCost.end(), std::numeric_limits<std::int32_t>::max());
+    for (int x = region.x0; x < region.x1; ++x) {
+      for (int k = 0; k < count; ++k) {
+        const int xr = x - (minD + k);
+        const std::int32_t c = costs[static_cast<std::size_t>(x) * count + k];
+        if (c < rightBestCost[xr]) {
+          rightBestCost[xr] = c;
+          outWinner[xr] = static_cast<std::int16_t>(minD + k);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace scalar
+}  // namespace horopter
