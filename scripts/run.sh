@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Sets everything up and runs the main job on the built-in default input.
+# Extra arguments go to `horopter run` (see build/bin/horopter run --help).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/setup.sh"
+"$root/scripts/build.sh"
+cd "$root"
+echo "run: build/bin/horopter run -o out $*"
+build/bin/horopter run -o out "$@"

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Horopter needs, only those missing (idempotent).
+# Runs apt-get non-interactively; uses sudo when not root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libopencv-dev opencv-data opencv-doc    # OpenCV, its Haar cascades, its sample data
+  libeigen3-dev
+  ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo   # OpenCL, and PoCL on the CPU
+  libgtest-dev libgmock-dev libbenchmark-dev
+  clang-format
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} Debian packages already installed"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null; then sudo="sudo"; else
+    echo "setup: missing packages (${missing[*]}) and not root without sudo: install them as root" >&2
+    exit 1
+  fi
+fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "setup: done"
