@@ -18,8 +18,9 @@ else
 fi
 
 echo "build: configuring $dir"
-cmake -S "$root" -B "$dir" "${flags[@]}" >"$dir.configure.log" 2>&1 || {
-  cat "$dir.configure.log" >&2
+mkdir -p "$dir"
+cmake -S "$root" -B "$dir" "${flags[@]}" >"$dir/configure.log" 2>&1 || {
+  cat "$dir/configure.log" >&2
   exit 1
 }
 echo "build: compiling with $jobs jobs"
