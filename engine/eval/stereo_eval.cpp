@@ -112,9 +112,7 @@ StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const c
   return s;
 }
 
-StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
-                                    const StereoParams& params, const EvalOptions& options) {
-  checkPair(left, right, gtPx);
+cv::Ptr<cv::StereoBM> makeOpenCvStereoBM(const StereoParams& params) {
   validate(params);
   if (params.blockSize < 5)
     throw Error("cv::StereoBM needs blockSize >= 5, got " + std::to_string(params.blockSize));
@@ -129,6 +127,13 @@ StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, c
   bm->setDisp12MaxDiff(params.disp12MaxDiff);
   bm->setSpeckleWindowSize(params.speckleWindowSize);
   bm->setSpeckleRange(params.speckleRange);
+  return bm;
+}
+
+StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
+                                    const StereoParams& params, const EvalOptions& options) {
+  checkPair(left, right, gtPx);
+  const cv::Ptr<cv::StereoBM> bm = makeOpenCvStereoBM(params);
   cv::Mat disparity;
   const double ms = timeRuns(options, [&] { bm->compute(left, right, disparity); });
   StereoScores s = scoreDisparity(viewOf(disparity), invalidDisparity(params), gtPx);

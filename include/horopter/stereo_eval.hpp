@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
 #include "horopter/backend.hpp"
@@ -44,6 +45,12 @@ struct EvalOptions {
 StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
                               const StereoParams& params, const MedianParams& median,
                               const Backend& backend, const EvalOptions& options = {});
+
+// cv::StereoBM set up with the same parameters (the peer in evals and benches).
+// StereoBM has no unfiltered mode: PreFilterType::None maps to its
+// normalized-response prefilter. Throws horopter::Error for blockSize < 5,
+// which StereoBM does not support.
+cv::Ptr<cv::StereoBM> makeOpenCvStereoBM(const StereoParams& params);
 
 // Runs cv::StereoBM with the same parameters (x-Sobel prefilter, texture,
 // uniqueness, speckles; its own left-right check) and scores its output.

@@ -1,0 +1,41 @@
+// frontend/<backend>/...: the whole per-frame chain as an application runs
+// it: StereoFrontend::computeDisparity (prefilter, matching, left-right
+// check, speckle filter, k5 median) then computeMask, segmenting the BGR left
+// view. Default parameters at each setting.
+#include "bench_inputs.hpp"
+#include "bench_support.hpp"
+#include "horopter/frontend.hpp"
+#include "registration.hpp"
+
+namespace horopter::bench {
+
+namespace {
+
+void runFrontend(benchmark::State& state, const Backend& backend, const MatchSetting& setting) {
+  const StereoPair& pair = stereoPair(setting.size);
+  const std::vector<std::int16_t> thresholds = sceneThresholds(setting.size);
+  // The front end allocates its buffers in the first frame and reuses them;
+  // with many iterations that first frame is amortised.
+  StereoFrontend frontend(frontendParams(setting), MedianParams{}, backend);
+  for (auto _ : state) {
+    frontend.computeDisparity(pair.left.view(), pair.right.view());
+    frontend.computeMask(thresholds, pair.leftColour.view());
+  }
+  setPixelCounters(state, setting);
+}
+
+}  // namespace
+
+void registerFrontendRows() {
+  for (const MatchSetting& setting : matchSettings(/*withTarget=*/false)) {
+    for (const Backend* backend : availableBackends()) {
+      const std::string name = "frontend/" + backend->name + "/" + sizeTag(setting.size) + "/" +
+                               matchTag(setting, kOurThreads);
+      measure(benchmark::RegisterBenchmark(
+          name.c_str(),
+          [backend, setting](benchmark::State& state) { runFrontend(state, *backend, setting); }));
+    }
+  }
+}
+
+}  // namespace horopter::bench

@@ -1,0 +1,66 @@
+// What every bench row shares: the settings grid, row-name pieces, counters
+// and the measuring policy.
+#pragma once
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "horopter/backend.hpp"
+#include "horopter/image.hpp"
+#include "horopter/stereo_params.hpp"
+
+namespace horopter::bench {
+
+struct FrameSize {
+  int width = 0;
+  int height = 0;
+};
+
+// One point of the matching grid.
+struct MatchSetting {
+  FrameSize size;
+  int numDisparities = 0;
+  int blockSize = 0;
+};
+
+inline constexpr FrameSize kSizes[] = {{320, 240}, {640, 480}, {1280, 720}};
+inline constexpr int kDisparityCounts[] = {64, 128};
+inline constexpr int kBlockSize = 9;
+// Our backends run on the calling thread only (for now): their rows are t1.
+inline constexpr int kOurThreads = 1;
+
+// Every size x disparity count at the standard block size; with
+// `withTarget`, also the issue-3 target 1280x720/d128/w15.
+std::vector<MatchSetting> matchSettings(bool withTarget);
+
+// The registered backends available on this machine, so that a new backend
+// gets its rows without touching the benches.
+std::vector<const Backend*> availableBackends();
+
+// Row-name pieces: "640x480" and "d64/w9/t1".
+std::string sizeTag(FrameSize size);
+std::string matchTag(const MatchSetting& setting, int threads);
+
+// The default parameters (cv::StereoBM's names and values) at this setting:
+// what the front end runs.
+StereoParams frontendParams(const MatchSetting& setting);
+// The same with the speckle filter off: the post-processing that ours and
+// the peer both run in the disparity/ and opencv_stereobm/ rows.
+StereoParams matchParams(const MatchSetting& setting);
+
+// "Mpix/s", and "Mpix*disp/s" for rows that search disparities.
+void setPixelCounters(benchmark::State& state, FrameSize size);
+void setPixelCounters(benchmark::State& state, const MatchSetting& setting);
+
+// Milliseconds. Rows keep their plain names: the minimum time comes from
+// the command line (main() sets a short default) rather than MinTime(),
+// which Google Benchmark appends to the name.
+benchmark::internal::Benchmark* measure(benchmark::internal::Benchmark* row);
+
+// Copies the pixels of `src` into `dst` (same size and type), for the
+// in-place kernels whose input must be restored before each run.
+void copyPixels(const Image& src, Image& dst);
+
+}  // namespace horopter::bench
