@@ -52,8 +52,12 @@ int Args::intValue(const std::string& name, int fallback) {
 }
 
 double Args::doubleValue(const std::string& name, double fallback) {
+  return optionalDouble(name).value_or(fallback);
+}
+
+std::optional<double> Args::optionalDouble(const std::string& name) {
   const auto v = value(name);
-  if (!v) return fallback;
+  if (!v) return std::nullopt;
   try {
     std::size_t used = 0;
     const double d = std::stod(*v, &used);

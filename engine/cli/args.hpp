@@ -20,6 +20,7 @@ class Args {
   std::optional<std::string> value(const std::string& name);
   int intValue(const std::string& name, int fallback);
   double doubleValue(const std::string& name, double fallback);
+  std::optional<double> optionalDouble(const std::string& name);
   std::string stringValue(const std::string& name, const std::string& fallback);
   // The remaining positional arguments (those not starting with "--"), removed.
   std::vector<std::string> positionals();

@@ -1,9 +1,11 @@
 // `horopter disparity` and `horopter run`: the front end on one stereo pair,
 // written to image files.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "commands.hpp"
 #include "default_input.hpp"
@@ -11,6 +13,7 @@
 #include "horopter/frontend.hpp"
 #include "horopter/geometry.hpp"
 #include "horopter/opencv.hpp"
+#include "horopter/stereo_eval.hpp"
 #include "io/disparity_images.hpp"
 
 namespace horopter::cli {
@@ -22,16 +25,9 @@ struct PairJob {
   StereoParams stereo;
   MedianParams median;
   std::string backend = "auto";
-  double fixationDisparity = 0;  // px; 0 = the middle of the search range
-  double focalPx = 0;            // 0 = the image width
+  std::optional<double> fixationDisparity;  // px; default: the middle of the search range
+  std::optional<double> focalPx;            // px; default: the image width
 };
-
-cv::Mat loadColour(const std::string& path, const char* what) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty())
-    throw Error(std::string(what) + " '" + path + "' does not exist or could not be decoded");
-  return image;
-}
 
 int runPair(const PairJob& job) {
   const cv::Mat leftColour = loadColour(job.left, "left image");
@@ -41,9 +37,8 @@ int runPair(const PairJob& job) {
                 std::to_string(leftColour.rows) + " but right image is " +
                 std::to_string(rightColour.cols) + "x" + std::to_string(rightColour.rows) +
                 ": a rectified pair has one size");
-  cv::Mat left, right;
-  cv::cvtColor(leftColour, left, cv::COLOR_BGR2GRAY);
-  cv::cvtColor(rightColour, right, cv::COLOR_BGR2GRAY);
+  const cv::Mat left = toGrey(leftColour);
+  const cv::Mat right = toGrey(rightColour);
 
   const Backend& backend = findBackend(job.backend);
   StereoFrontend frontend(job.stereo, job.median, backend);
@@ -54,12 +49,14 @@ int runPair(const PairJob& job) {
   frontend.computeDisparity(viewOf(left), viewOf(right));
 
   RectifiedGeometry geometry;
-  geometry.focalPx = job.focalPx > 0 ? job.focalPx : left.cols;
+  geometry.focalPx = job.focalPx.value_or(left.cols);
   geometry.cx = (left.cols - 1) / 2.0;
   geometry.baseline = 1.0;  // thresholds in pixels do not depend on the unit
-  const double fixation = job.fixationDisparity > 0
-                              ? job.fixationDisparity
-                              : job.stereo.minDisparity + job.stereo.numDisparities / 2.0;
+  const double fixation =
+      job.fixationDisparity.value_or(job.stereo.minDisparity + job.stereo.numDisparities / 2.0);
+  if (!job.fixationDisparity && fixation <= 0)
+    throw Error("the middle of the search range (" + std::to_string(fixation) +
+                " px) is not in front of the cameras: pass --fixation-disparity D with D > 0");
   const auto thresholds = horopterThresholds(
       geometry, left.cols, fixationFromDisparity(geometry, geometry.cx, fixation));
   frontend.computeMask(thresholds, viewOf(leftColour));
@@ -90,12 +87,20 @@ const char* kPairHelpTail =
     "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
     "DIR/segmented.png (the left image, zeroed outside the zone).\n";
 
+// A number option that must be positive and finite when given.
+std::optional<double> positiveOption(Args& args, const std::string& name) {
+  const std::optional<double> v = args.optionalDouble(name);
+  if (v && !(*v > 0 && std::isfinite(*v)))
+    throw Error(name + " must be a positive number, got " + std::to_string(*v));
+  return v;
+}
+
 void parseCommon(Args& args, PairJob& job) {
   job.stereo = parseStereoFlags(args, job.stereo);
   job.median = parseMedianFlags(args, job.median);
   job.backend = args.stringValue("--backend", job.backend);
-  job.fixationDisparity = args.doubleValue("--fixation-disparity", 0);
-  job.focalPx = args.doubleValue("--focal-px", 0);
+  job.fixationDisparity = positiveOption(args, "--fixation-disparity");
+  job.focalPx = positiveOption(args, "--focal-px");
   job.outDir = args.stringValue("-o", args.stringValue("--out", "out"));
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "horopter/error.hpp"
 #include "horopter/frontend.hpp"
@@ -44,11 +45,24 @@ void checkPair(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx) {
 
 }  // namespace
 
-cv::Mat loadGrey(const std::string& path, const char* what) {
+cv::Mat loadColour(const std::string& path, const char* what) {
   requireFile(path, what);
-  cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (grey.empty()) throw Error(std::string(what) + " '" + path + "' could not be decoded");
+  cv::Mat colour = cv::imread(path, cv::IMREAD_COLOR);
+  if (colour.empty()) throw Error(std::string(what) + " '" + path + "' could not be decoded");
+  return colour;
+}
+
+cv::Mat toGrey(const cv::Mat& image) {
+  if (image.type() == CV_8UC1) return image;
+  if (image.type() != CV_8UC3)
+    throw Error("expected an 8-bit grey or BGR image, got " + cv::typeToString(image.type()));
+  cv::Mat grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
   return grey;
+}
+
+cv::Mat loadGrey(const std::string& path, const char* what) {
+  return toGrey(loadColour(path, what));
 }
 
 cv::Mat loadGroundTruth(const std::string& path, double scale) {

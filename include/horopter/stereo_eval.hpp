@@ -28,7 +28,12 @@ struct StereoScores {
 // horopter::Error if the file is missing, unreadable or scale <= 0.
 cv::Mat loadGroundTruth(const std::string& path, double scale);
 
-// Reads an image as 8-bit grey; throws horopter::Error naming the path.
+// Reads an image as 8-bit BGR; throws horopter::Error naming the path.
+cv::Mat loadColour(const std::string& path, const char* what);
+// BGR (or grey) to grey, the one conversion every command uses, so that
+// `disparity` and `eval-stereo` see the same pixels.
+cv::Mat toGrey(const cv::Mat& image);
+// loadColour, then toGrey.
 cv::Mat loadGrey(const std::string& path, const char* what);
 
 // Scores a disparity map (S16C1, 1/16 px) with the invalid marker `invalid`

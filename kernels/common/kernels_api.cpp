@@ -77,13 +77,14 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     throw Error("image " + size(left) + " is smaller than the " + std::to_string(params.blockSize) +
                 "x" + std::to_string(params.blockSize) +
                 " block: use a smaller blockSize or a larger image");
-  if (matchRegion(left.width, left.height, params).empty())
+  if (matchRegion(left.width, left.height, params).empty()) {
+    const int maxD = params.minDisparity + params.numDisparities - 1;
+    const int needed = params.blockSize + std::max(maxD, 0) - std::min(params.minDisparity, 0);
     throw Error("image width " + std::to_string(left.width) +
-                " leaves no column where every disparity fits: it must exceed numDisparities + "
-                "minDisparity + blockSize - 1 = " +
-                std::to_string(params.numDisparities + std::max(params.minDisparity, 0) +
-                               params.blockSize - 1) +
-                "; reduce numDisparities or blockSize");
+                " leaves no column where every disparity fits: matching needs width >= "
+                "blockSize + max(maxDisparity, 0) - min(minDisparity, 0) = " +
+                std::to_string(needed) + "; reduce numDisparities or blockSize");
+  }
   for (const ConstImageView* in : {&left, &right, &texture}) {
     if (overlaps(*in, disparity) || overlaps(*in, winnerRight))
       throw Error("matchBlocks: outputs must not overlap the inputs");

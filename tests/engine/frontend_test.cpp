@@ -1,0 +1,287 @@
+// StereoFrontend: the chain equals the kernels called one by one, buffers are
+// reused correctly across frames and sizes, masks and segmentation.
+#include <unistd.h>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "horopter/frontend.hpp"
+#include "horopter/geometry.hpp"
+#include "horopter/kernels.hpp"
+#include "horopter/opencv.hpp"
+#include "io/disparity_images.hpp"
+#include "test_support.hpp"
+
+namespace horopter::test {
+namespace {
+
+struct Chain {
+  TestImage cleaned, final;
+};
+
+// The front end's chain, kernel by kernel, written from frontend.hpp.
+Chain runKernels(const ConstImageView& left, const ConstImageView& right, const StereoParams& p,
+                 const MedianParams& m) {
+  const int w = left.width, h = left.height;
+  TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1), tex(w, h, PixelType::U8C1);
+  ConstImageView matchLeft = left, matchRight = right, texture{};
+  if (p.preFilterType == PreFilterType::XSobel) {
+    prefilterXSobel(left, p.preFilterCap, lf.view(), tex.view());
+    prefilterXSobel(right, p.preFilterCap, rf.view(), {});
+    matchLeft = lf.view();
+    matchRight = rf.view();
+  } else {
+    prefilterXSobel(left, p.preFilterCap, {}, tex.view());
+  }
+  if (p.textureThreshold > 0) texture = tex.view();
+  Chain out{TestImage(w, h, PixelType::S16C1), TestImage()};
+  TestImage wr(w, h, PixelType::S16C1);
+  matchBlocks(matchLeft, matchRight, texture, p, out.cleaned.view(), wr.view());
+  leftRightCheck(out.cleaned.view(), wr.view(), p);
+  filterSpeckles(out.cleaned.view(), p);
+  if (m.kernelSize > 0) {
+    out.final = TestImage(w, h, PixelType::S16C1);
+    medianFilter(out.cleaned.view(), out.final.view(), m, invalidDisparity(p));
+  } else {
+    out.final = out.cleaned.clone();
+  }
+  return out;
+}
+
+struct Setting {
+  const char* what;
+  StereoParams p;
+  MedianParams m;
+};
+
+std::vector<Setting> settings() {
+  std::vector<Setting> s;
+  s.push_back({"defaults", StereoParams{}, MedianParams{}});
+  StereoParams p;
+  p.numDisparities = 32;
+  p.preFilterType = PreFilterType::None;
+  s.push_back({"no prefilter, texture check on", p, MedianParams{}});
+  p.textureThreshold = 0;
+  MedianParams m3;
+  m3.kernelSize = 3;
+  s.push_back({"no prefilter, no texture check, median 3", p, m3});
+  StereoParams q;
+  q.numDisparities = 32;
+  q.minDisparity = -8;
+  q.blockSize = 7;
+  q.disp12MaxDiff = -1;
+  q.speckleWindowSize = 0;
+  MedianParams off;
+  off.kernelSize = 0;
+  s.push_back({"negative range, no left-right check, no speckles, no median", q, off});
+  StereoParams r;
+  r.numDisparities = 48;
+  r.blockSize = 11;
+  r.uniquenessRatio = 0;
+  r.disp12MaxDiff = 0;
+  r.speckleWindowSize = 400;
+  r.speckleRange = 16;
+  MedianParams fill;
+  fill.minValidToFill = 3;
+  s.push_back({"block 11, strict check, big speckles, eager fill", r, fill});
+  // Shifted ranges with the median on: the invalid marker is not -16.
+  StereoParams shifted;
+  shifted.numDisparities = 32;
+  shifted.minDisparity = -8;
+  s.push_back({"range -8..23, median 5", shifted, MedianParams{}});
+  shifted.minDisparity = 3;
+  s.push_back({"range 3..34, median 3", shifted, m3});
+  return s;
+}
+
+TEST(Frontend, ChainEqualsKernelsOneByOne) {
+  const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 30, 5}, 31);
+  for (const Setting& s : settings()) {
+    SCOPED_TRACE(s.what);
+    StereoFrontend frontend(s.p, s.m);
+    const Image& out = frontend.computeDisparity(pair.left.view(), pair.right.view());
+    const Chain want = runKernels(pair.left.view(), pair.right.view(), s.p, s.m);
+    EXPECT_TRUE(sameImage(want.cleaned.view(), frontend.cleanedDisparity().view()));
+    EXPECT_TRUE(sameImage(want.final.view(), out.view()));
+    EXPECT_EQ(&out, &frontend.disparity());
+    EXPECT_EQ(frontend.stereoParams().numDisparities, s.p.numDisparities);
+    EXPECT_EQ(frontend.medianParams().kernelSize, s.m.kernelSize);
+    EXPECT_EQ(&frontend.backend(), &scalarBackend());
+    const FrontendTimings& t = frontend.timings();
+    for (double ms : {t.prefilter, t.match, t.cleanup, t.median, t.mask})
+      EXPECT_GE(ms, 0);
+    EXPECT_DOUBLE_EQ(t.total(), t.prefilter + t.match + t.cleanup + t.median + t.mask);
+  }
+}
+
+TEST(Frontend, StridedAndRoiInputsGiveTheSameResult) {
+  const StereoPair pair = stepScenePair(150, 60, StepScene{80, 130, 10, 50, 20, 4}, 5);
+  StereoParams p;
+  p.numDisparities = 32;
+  StereoFrontend tight(p, MedianParams{});
+  tight.computeDisparity(pair.left.view(), pair.right.view());
+  for (const Layout& layout : kLayouts) {
+    const TestImage l = pair.left.clone(layout), r = pair.right.clone(layout);
+    StereoFrontend other(p, MedianParams{});
+    other.computeDisparity(l.view(), r.view());
+    EXPECT_TRUE(sameImage(tight.disparity().view(), other.disparity().view())) << layout.name;
+    EXPECT_TRUE(l.canariesIntact());
+    EXPECT_TRUE(r.canariesIntact());
+  }
+}
+
+// One front end over frames of changing content and size gives what a fresh
+// one gives: nothing from an earlier frame leaks into a later one.
+TEST(Frontend, ReusedAcrossFramesAndSizes) {
+  StereoParams p;
+  p.numDisparities = 32;
+  StereoFrontend reused(p, MedianParams{});
+  // Same size twice, then changes of both sides, of the height only and of
+  // the width only.
+  const std::pair<int, int> sizes[] = {{120, 50}, {120, 50}, {181, 77}, {120, 50},
+                                       {120, 64}, {96, 64},  {96, 40}};
+  std::uint64_t seed = 1;
+  for (const auto& [w, h] : sizes) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    const StereoPair pair = stepScenePair(w, h, StepScene{w / 2, w - 10, 8, h - 8, 25, 3}, seed++);
+    const TestImage colour = randomImage(w, h, PixelType::U8C3, seed, 0, 255);
+    std::vector<std::int16_t> thresholds(static_cast<std::size_t>(w));
+    for (int u = 0; u < w; ++u)
+      thresholds[u] = static_cast<std::int16_t>(16 * (5 + u % 20));
+    reused.computeDisparity(pair.left.view(), pair.right.view());
+    reused.computeMask(thresholds, seed % 2 ? colour.view() : pair.left.view());
+    StereoFrontend fresh(p, MedianParams{});
+    fresh.computeDisparity(pair.left.view(), pair.right.view());
+    fresh.computeMask(thresholds, seed % 2 ? colour.view() : pair.left.view());
+    EXPECT_TRUE(sameImage(fresh.disparity().view(), reused.disparity().view()));
+    EXPECT_TRUE(sameImage(fresh.cleanedDisparity().view(), reused.cleanedDisparity().view()));
+    EXPECT_TRUE(sameImage(fresh.mask().view(), reused.mask().view()));
+    EXPECT_TRUE(sameImage(fresh.segmented().view(), reused.segmented().view()));
+  }
+}
+
+TEST(Frontend, MaskAndSegmentationFollowTheFinalDisparity) {
+  const int w = 160, h = 64;
+  const StereoPair pair = stepScenePair(w, h, StepScene{80, 140, 12, 52, 28, 6}, 77);
+  StereoParams p;
+  p.numDisparities = 32;
+  StereoFrontend frontend(p, MedianParams{});
+  frontend.computeDisparity(pair.left.view(), pair.right.view());
+  RectifiedGeometry g{static_cast<double>(w), (w - 1) / 2.0, 1.0};
+  // Fixate between the two depths: the near square is inside, the background out.
+  const auto thresholds = horopterThresholds(g, w, fixationFromDisparity(g, g.cx, 17.0));
+  const TestImage colour = randomImage(w, h, PixelType::U8C3, 5, 1, 255);
+  frontend.computeMask(thresholds, colour.view());
+  ASSERT_EQ(frontend.segmented().type(), PixelType::U8C3);
+  TestImage mask(w, h, PixelType::U8C1), segmented(w, h, PixelType::U8C3);
+  horopterMask(frontend.disparity().view(), thresholds, invalidDisparity(p), mask.view(),
+               colour.view(), segmented.view());
+  EXPECT_TRUE(sameImage(mask.view(), frontend.mask().view()));
+  EXPECT_TRUE(sameImage(segmented.view(), frontend.segmented().view()));
+  long nearInside = 0, nearTotal = 0, farInside = 0, farTotal = 0;
+  for (int y = 20; y < 44; ++y) {
+    for (int x = 90; x < 130; ++x) {
+      ++nearTotal;
+      nearInside += frontend.mask().row<std::uint8_t>(y)[x] == 255;
+    }
+    for (int x = 36; x < 52; ++x) {
+      ++farTotal;
+      farInside += frontend.mask().row<std::uint8_t>(y)[x] == 255;
+    }
+  }
+  EXPECT_EQ(nearInside, nearTotal) << "the near square is inside the circle";
+  EXPECT_EQ(farInside, 0) << "the background is outside";
+
+  // A grey image gives a grey segmentation.
+  frontend.computeMask(thresholds, pair.left.view());
+  EXPECT_EQ(frontend.segmented().type(), PixelType::U8C1);
+  TestImage grey(w, h, PixelType::U8C1);
+  horopterMask(frontend.disparity().view(), thresholds, invalidDisparity(p), mask.view(),
+               pair.left.view(), grey.view());
+  EXPECT_TRUE(sameImage(grey.view(), frontend.segmented().view()));
+}
+
+TEST(Frontend, WritesItsOutputsAsImages) {
+  const int w = 120, h = 48;
+  const StereoPair pair = stepScenePair(w, h, StepScene{60, 100, 10, 38, 20, 4}, 9);
+  StereoParams p;
+  p.numDisparities = 32;
+  StereoFrontend frontend(p, MedianParams{});
+  frontend.computeDisparity(pair.left.view(), pair.right.view());
+  std::vector<std::int16_t> thresholds(w, static_cast<std::int16_t>(16 * 12));
+  const TestImage colour = randomImage(w, h, PixelType::U8C3, 3, 0, 255);
+  frontend.computeMask(thresholds, colour.view());
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("horopter-test-" + std::to_string(::getpid()) + "-outputs");
+  std::filesystem::remove_all(dir);
+  writeFrontendOutputs(dir.string(), frontend);
+
+  // disparity.png: 16-bit, 1/16 px; invalid and non-positive disparities are 0.
+  const cv::Mat png = cv::imread((dir / "disparity.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(png.type(), CV_16UC1);
+  ASSERT_EQ(png.cols, w);
+  ASSERT_EQ(png.rows, h);
+  const std::int16_t inv = invalidDisparity(p);
+  long invalid = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::int16_t d = frontend.disparity().row<std::int16_t>(y)[x];
+      const int want = (d == inv || d <= 0) ? 0 : d;
+      ASSERT_EQ(png.at<std::uint16_t>(y, x), want) << x << "," << y;
+      invalid += d == inv;
+    }
+  }
+  EXPECT_GT(invalid, 0);
+  // disparity_color.png: black where invalid, coloured elsewhere.
+  const cv::Mat colourPng = cv::imread((dir / "disparity_color.png").string(), cv::IMREAD_COLOR);
+  ASSERT_EQ(colourPng.size(), cv::Size(w, h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool isInvalid = frontend.disparity().row<std::int16_t>(y)[x] == inv;
+      const cv::Vec3b c = colourPng.at<cv::Vec3b>(y, x);
+      ASSERT_EQ(c == cv::Vec3b(0, 0, 0), isInvalid) << x << "," << y;
+    }
+  const cv::Mat maskPng = cv::imread((dir / "mask.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(maskPng.type(), CV_8UC1);
+  EXPECT_TRUE(sameImage(frontend.mask().view(), viewOf(maskPng)));
+  const cv::Mat segPng = cv::imread((dir / "segmented.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(segPng.type(), CV_8UC3);
+  EXPECT_TRUE(sameImage(frontend.segmented().view(), viewOf(segPng)));
+  std::filesystem::remove_all(dir);
+}
+
+// disparity.png keeps positive disparities and writes 0 for invalid and
+// non-positive ones.
+TEST(Frontend, DisparityPngWritesUnknownAsZero) {
+  const std::int16_t inv = -9 * 16;
+  const std::int16_t row[7] = {-40, inv, 0, 5, 300, 32767, -1};
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("horopter-test-" + std::to_string(::getpid()) + "-disparity.png");
+  writeDisparityPng(path.string(), {row, 7, 1, sizeof row, PixelType::S16C1}, inv);
+  const cv::Mat png = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  std::filesystem::remove(path);
+  ASSERT_EQ(png.type(), CV_16UC1);
+  ASSERT_EQ(png.cols, 7);
+  const int want[7] = {0, 0, 0, 5, 300, 32767, 0};
+  for (int x = 0; x < 7; ++x)
+    EXPECT_EQ(png.at<std::uint16_t>(0, x), want[x]) << x;
+}
+
+// Near is hot: the colour view puts more red on larger disparities.
+TEST(Frontend, ColourViewGoesFromBlueToRed) {
+  StereoParams p;
+  p.numDisparities = 64;
+  std::int16_t row[3] = {16 * 2, 16 * 60, invalidDisparity(p)};
+  const cv::Mat colour = colorizeDisparity({row, 3, 1, sizeof row, PixelType::S16C1}, p);
+  const cv::Vec3b far = colour.at<cv::Vec3b>(0, 0), near = colour.at<cv::Vec3b>(0, 1);
+  EXPECT_GT(near[2], far[2]) << "red";
+  EXPECT_GT(far[0], near[0]) << "blue";
+  EXPECT_EQ(colour.at<cv::Vec3b>(0, 2), cv::Vec3b(0, 0, 0)) << "invalid is black";
+}
+
+}  // namespace
+}  // namespace horopter::test
