@@ -246,9 +246,10 @@ TEST(BadInput, NarrowImageMessageStatesTheTrueMinimumWidth) {
     const auto equals = message.rfind("= ");
     ASSERT_NE(equals, std::string::npos) << message;
     const int stated = std::atoi(message.c_str() + equals + 2);
-    EXPECT_EQ(stated, narrowest)
-        << "minDisparity " << minD << ": the message says the width must be at least " << stated
-        << ", but the narrowest accepted width is " << narrowest << ". Message: " << message;
+    EXPECT_EQ(stated, narrowest) << "minDisparity " << minD
+                                 << ": the message says the width must be at least " << stated
+                                 << ", but the narrowest accepted width is " << narrowest
+                                 << ". Message: " << message;
   }
 }
 
