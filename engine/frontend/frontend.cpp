@@ -1,5 +1,6 @@
 #include "horopter/frontend.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "horopter/error.hpp"
@@ -18,8 +19,11 @@ double msSince(Clock::time_point start) {
 }  // namespace
 
 StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
-                               const Backend& backend)
-    : stereo_(stereo), median_(median), backend_(&backend) {
+                               const Backend& backend, int threads)
+    : stereo_(stereo),
+      median_(median),
+      backend_(&backend),
+      pool_(std::make_unique<ThreadPool>(threads)) {
   validate(stereo_);
   validate(median_);
 }
@@ -36,6 +40,11 @@ void StereoFrontend::allocate(int width, int height) {
   segmented_ = Image();
 }
 
+void StereoFrontend::forEachStripe(int height, const std::function<void(RowRange)>& fn) {
+  const int stripes = std::min(pool_->threads(), height);
+  pool_->run(stripes, [&](int i) { fn({height * i / stripes, height * (i + 1) / stripes}); });
+}
+
 const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
                                               const ConstImageView& right) {
   checkView(left, PixelType::U8C1, "left image");
@@ -49,30 +58,42 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   const bool wantTexture = stereo_.textureThreshold > 0;
   ConstImageView matchLeft = left;
   ConstImageView matchRight = right;
+  const int height = left.height;
   if (xsobel) {
-    prefilterXSobel(left, stereo_.preFilterCap, leftFiltered_.view(),
-                    wantTexture ? texture_.view() : ImageView{}, *backend_);
-    prefilterXSobel(right, stereo_.preFilterCap, rightFiltered_.view(), {}, *backend_);
+    forEachStripe(height, [&](RowRange rows) {
+      prefilterXSobel(left, stereo_.preFilterCap, leftFiltered_.view(),
+                      wantTexture ? texture_.view() : ImageView{}, *backend_, rows);
+      prefilterXSobel(right, stereo_.preFilterCap, rightFiltered_.view(), {}, *backend_, rows);
+    });
     matchLeft = leftFiltered_.view();
     matchRight = rightFiltered_.view();
   } else if (wantTexture) {
-    prefilterXSobel(left, stereo_.preFilterCap, {}, texture_.view(), *backend_);
+    forEachStripe(height, [&](RowRange rows) {
+      prefilterXSobel(left, stereo_.preFilterCap, {}, texture_.view(), *backend_, rows);
+    });
   }
   timings_.prefilter = msSince(start);
 
   start = Clock::now();
-  matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, stereo_,
-              clean_.view(), winnerRight_.view(), *backend_);
+  forEachStripe(height, [&](RowRange rows) {
+    matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, stereo_,
+                clean_.view(), winnerRight_.view(), *backend_, rows);
+  });
   timings_.match = msSince(start);
 
   start = Clock::now();
-  leftRightCheck(clean_.view(), winnerRight_.view(), stereo_, *backend_);
+  forEachStripe(height, [&](RowRange rows) {
+    leftRightCheck(clean_.view(), winnerRight_.view(), stereo_, *backend_, rows);
+  });
   filterSpeckles(clean_.view(), stereo_, *backend_);
   timings_.cleanup = msSince(start);
 
   if (median_.kernelSize > 0) {
     start = Clock::now();
-    medianFilter(clean_.view(), median_out_.view(), median_, invalidDisparity(stereo_), *backend_);
+    forEachStripe(height, [&](RowRange rows) {
+      medianFilter(clean_.view(), median_out_.view(), median_, invalidDisparity(stereo_), *backend_,
+                   rows);
+    });
     timings_.median = msSince(start);
   }
   return disparity();
@@ -95,8 +116,10 @@ void StereoFrontend::computeMask(std::span<const std::int16_t> thresholds,
         segmented_.type() != image.type)
       segmented_ = Image(image.width, image.height, image.type);
   }
-  horopterMask(disparity().view(), thresholds, invalidDisparity(stereo_), mask_.view(), image,
-               segment ? segmented_.view() : ImageView{}, *backend_);
+  forEachStripe(clean_.height(), [&](RowRange rows) {
+    horopterMask(disparity().view(), thresholds, invalidDisparity(stereo_), mask_.view(), image,
+                 segment ? segmented_.view() : ImageView{}, *backend_, rows);
+  });
   timings_.mask = msSince(start);
 }
 

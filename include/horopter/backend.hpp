@@ -12,23 +12,34 @@
 
 namespace horopter {
 
+// The rows [begin, end) of the output that one kernel call writes. Inputs may
+// be read outside them (a window's halo), so a frame split into stripes gives
+// the same result as the whole frame. `all()` (end < 0) means every row.
+struct RowRange {
+  int begin = 0;
+  int end = -1;
+  static constexpr RowRange all() { return {0, -1}; }
+  bool isAll() const { return end < 0; }
+};
+
 // The kernels a backend provides. Arguments reach these functions already
-// validated by the public entry points in kernels.hpp; every backend must give
-// the scalar reference's result bit for bit.
+// validated by the public entry points in kernels.hpp (a RowRange reaches them
+// resolved: 0 <= begin <= end <= height); every backend must give the scalar
+// reference's result bit for bit, for any row range.
 struct KernelTable {
   void (*prefilterXSobel)(const ConstImageView& src, int cap, const ImageView& filtered,
-                          const ImageView& texture);
+                          const ImageView& texture, RowRange rows);
   void (*matchBlocks)(const ConstImageView& left, const ConstImageView& right,
                       const ConstImageView& texture, const StereoParams& params,
-                      const ImageView& disparity, const ImageView& winnerRight);
+                      const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
   void (*leftRightCheck)(const ImageView& disparity, const ConstImageView& winnerRight,
-                         const StereoParams& params);
+                         const StereoParams& params, RowRange rows);
   void (*filterSpeckles)(const ImageView& disparity, const StereoParams& params);
   void (*medianFilter)(const ConstImageView& src, const ImageView& dst, int kernelSize,
-                       int minValid, std::int16_t invalid);
+                       int minValid, std::int16_t invalid, RowRange rows);
   void (*horopterMask)(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
                        std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
-                       const ImageView& segmented);
+                       const ImageView& segmented, RowRange rows);
 };
 
 struct Backend {

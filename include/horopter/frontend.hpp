@@ -1,15 +1,21 @@
 // The per-frame stereo front end: prefilter, SAD matching, left-right check,
 // speckle filter, hole-filling median, horopter mask. It owns its buffers
 // (allocated when the frame size changes, reused otherwise) and runs the
-// kernels of one backend; it starts no threads.
+// kernels of one backend. With threads > 1 each kernel runs as horizontal
+// stripes on a pool of that many threads (the caller's included); the result
+// is the one-thread result bit for bit. The speckle filter, which joins pixels
+// across the whole frame, runs on one thread.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <span>
 
 #include "horopter/backend.hpp"
 #include "horopter/image.hpp"
 #include "horopter/stereo_params.hpp"
+#include "horopter/thread_pool.hpp"
 
 namespace horopter {
 
@@ -21,9 +27,9 @@ struct FrontendTimings {
 
 class StereoFrontend {
  public:
-  // Validates the parameters (throws horopter::Error).
+  // Validates the parameters and the thread count, 1..256 (throws horopter::Error).
   StereoFrontend(const StereoParams& stereo, const MedianParams& median,
-                 const Backend& backend = scalarBackend());
+                 const Backend& backend = scalarBackend(), int threads = 1);
 
   // Rectified U8C1 pair in, final disparity (S16C1, 1/16 px) out: prefilter,
   // matching, left-right check, speckles, then the median when enabled.
@@ -42,13 +48,17 @@ class StereoFrontend {
   const StereoParams& stereoParams() const { return stereo_; }
   const MedianParams& medianParams() const { return median_; }
   const Backend& backend() const { return *backend_; }
+  int threads() const { return pool_->threads(); }
 
  private:
   void allocate(int width, int height);
+  // Runs fn over one stripe of rows per thread of the pool.
+  void forEachStripe(int height, const std::function<void(RowRange)>& fn);
 
   StereoParams stereo_;
   MedianParams median_;
   const Backend* backend_;
+  std::unique_ptr<ThreadPool> pool_;
   Image leftFiltered_, rightFiltered_, texture_;
   Image clean_, winnerRight_, median_out_;
   Image mask_, segmented_;

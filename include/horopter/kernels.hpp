@@ -3,6 +3,9 @@
 // Each function checks its arguments (throwing horopter::Error with a message
 // that says what to fix) and then runs the chosen backend. The scalar
 // reference in kernels/<kernel>/<kernel>_scalar.cpp states the exact semantics.
+// `rows` limits the output rows written (for running stripes of one frame on
+// several threads); the default is the whole image. The speckle filter joins
+// pixels across the whole image and has no row range.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +21,8 @@ namespace horopter {
 // clamp(sobel, -cap, cap) + cap in [0, 2 cap]; `texture` (U8C1, may be empty)
 // receives |clamp(sobel, -cap, cap)| in [0, cap]. Both sized as `src`.
 void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
-                     const ImageView& texture, const Backend& backend = scalarBackend());
+                     const ImageView& texture, const Backend& backend = scalarBackend(),
+                     RowRange rows = RowRange::all());
 
 // SAD block matching with winner-take-all, texture and uniqueness checks and
 // sub-pixel refinement. `left`/`right` are U8C1 (prefiltered or raw), `texture`
@@ -28,12 +32,13 @@ void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filter
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const ImageView& disparity, const ImageView& winnerRight,
-                 const Backend& backend = scalarBackend());
+                 const Backend& backend = scalarBackend(), RowRange rows = RowRange::all());
 
 // Invalidates pixels whose disparity disagrees with the right view's winner by
 // more than params.disp12MaxDiff (no-op when it is negative).
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
-                    const StereoParams& params, const Backend& backend = scalarBackend());
+                    const StereoParams& params, const Backend& backend = scalarBackend(),
+                    RowRange rows = RowRange::all());
 
 // Invalidates connected blobs of at most params.speckleWindowSize pixels
 // (no-op when it is 0).
@@ -43,7 +48,8 @@ void filterSpeckles(const ImageView& disparity, const StereoParams& params,
 // Invalid-aware median that fills holes; `src` and `dst` are S16C1 of the same
 // size and must not overlap.
 void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianParams& median,
-                  std::int16_t invalid, const Backend& backend = scalarBackend());
+                  std::int16_t invalid, const Backend& backend = scalarBackend(),
+                  RowRange rows = RowRange::all());
 
 // Horopter mask: 255 where the disparity is valid and >= thresholds[x], else 0.
 // `thresholds` holds one entry per column (1/16 px). When `segmented` is not
@@ -51,6 +57,7 @@ void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianP
 // pixels outside the mask zeroed.
 void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
                   std::int16_t invalid, const ImageView& mask, const ConstImageView& image = {},
-                  const ImageView& segmented = {}, const Backend& backend = scalarBackend());
+                  const ImageView& segmented = {}, const Backend& backend = scalarBackend(),
+                  RowRange rows = RowRange::all());
 
 }  // namespace horopter

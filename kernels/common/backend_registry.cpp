@@ -18,7 +18,7 @@ namespace {
 Backend makeScalar() {
   Backend b;
   b.name = "scalar";
-  b.description = "portable C++ reference (the specification), one thread";
+  b.description = "portable C++ reference (the specification)";
   b.available = true;
   b.kernels.prefilterXSobel = scalar::prefilterXSobel;
   b.kernels.matchBlocks = scalar::matchBlocks;
@@ -26,6 +26,32 @@ Backend makeScalar() {
   b.kernels.filterSpeckles = scalar::filterSpeckles;
   b.kernels.medianFilter = scalar::medianFilter;
   b.kernels.horopterMask = scalar::horopterMask;
+  return b;
+}
+
+bool cpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+// AVX2 kernels where they exist. The speckle filter is a flood fill with no
+// data parallelism worth vectorising, so every backend shares the scalar one.
+Backend makeAvx2() {
+  Backend b;
+  b.name = "avx2";
+  b.description = "hand-written AVX2 kernels (x86-64 CPUs with AVX2)";
+  b.available = cpuHasAvx2();
+  if (!b.available) b.unavailableReason = "this CPU has no AVX2";
+  b.kernels.prefilterXSobel = avx2::prefilterXSobel;
+  b.kernels.matchBlocks = avx2::matchBlocks;
+  b.kernels.leftRightCheck = avx2::leftRightCheck;
+  b.kernels.filterSpeckles = scalar::filterSpeckles;
+  b.kernels.medianFilter = avx2::medianFilter;
+  b.kernels.horopterMask = avx2::horopterMask;
   return b;
 }
 
@@ -44,7 +70,8 @@ const Backend& scalarBackend() {
 }
 
 const std::vector<const Backend*>& registeredBackends() {
-  static const std::vector<const Backend*> all = {&scalarBackend()};
+  static const Backend avx2 = makeAvx2();
+  static const std::vector<const Backend*> all = {&scalarBackend(), &avx2};
   return all;
 }
 

@@ -26,6 +26,16 @@ bool overlaps(const ConstImageView& a, const ConstImageView& b) {
   return a0 < b1 && b0 < a1;
 }
 
+// Resolves RowRange::all() and checks an explicit range against the height.
+RowRange resolveRows(RowRange rows, int height) {
+  if (rows.isAll()) return {0, height};
+  if (rows.begin < 0 || rows.begin > rows.end || rows.end > height)
+    throw Error("row range [" + std::to_string(rows.begin) + ", " + std::to_string(rows.end) +
+                ") is not within the image's " + std::to_string(height) +
+                " rows: use 0 <= begin <= end <= height");
+  return rows;
+}
+
 void requireKernel(const void* fn, const Backend& backend, const char* kernel) {
   if (fn == nullptr) throw Error("backend '" + backend.name + "' has no " + kernel + " kernel");
 }
@@ -33,7 +43,7 @@ void requireKernel(const void* fn, const Backend& backend, const char* kernel) {
 }  // namespace
 
 void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
-                     const ImageView& texture, const Backend& backend) {
+                     const ImageView& texture, const Backend& backend, RowRange rows) {
   checkView(src, PixelType::U8C1, "prefilter input");
   if (cap < 1 || cap > 63)
     throw Error("preFilterCap must be within 1..63, got " + std::to_string(cap));
@@ -51,12 +61,13 @@ void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filter
     throw Error("prefilterXSobel: input and outputs must not overlap");
   requireKernel(reinterpret_cast<const void*>(backend.kernels.prefilterXSobel), backend,
                 "prefilter");
-  backend.kernels.prefilterXSobel(src, cap, filtered, texture);
+  backend.kernels.prefilterXSobel(src, cap, filtered, texture, resolveRows(rows, src.height));
 }
 
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight, const Backend& backend) {
+                 const ImageView& disparity, const ImageView& winnerRight, const Backend& backend,
+                 RowRange rows) {
   validate(params);
   checkView(left, PixelType::U8C1, "left image");
   checkView(right, PixelType::U8C1, "right image");
@@ -92,11 +103,12 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   if (overlaps(disparity, winnerRight))
     throw Error("matchBlocks: the disparity and right-winner outputs must not overlap");
   requireKernel(reinterpret_cast<const void*>(backend.kernels.matchBlocks), backend, "matching");
-  backend.kernels.matchBlocks(left, right, texture, params, disparity, winnerRight);
+  backend.kernels.matchBlocks(left, right, texture, params, disparity, winnerRight,
+                              resolveRows(rows, left.height));
 }
 
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
-                    const StereoParams& params, const Backend& backend) {
+                    const StereoParams& params, const Backend& backend, RowRange rows) {
   validate(params);
   checkView(disparity, PixelType::S16C1, "disparity");
   checkView(winnerRight, PixelType::S16C1, "right-winner map");
@@ -105,7 +117,8 @@ void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRigh
     throw Error("leftRightCheck: the disparity and the right-winner map must not overlap");
   requireKernel(reinterpret_cast<const void*>(backend.kernels.leftRightCheck), backend,
                 "left-right check");
-  backend.kernels.leftRightCheck(disparity, winnerRight, params);
+  backend.kernels.leftRightCheck(disparity, winnerRight, params,
+                                 resolveRows(rows, disparity.height));
 }
 
 void filterSpeckles(const ImageView& disparity, const StereoParams& params,
@@ -117,7 +130,7 @@ void filterSpeckles(const ImageView& disparity, const StereoParams& params,
 }
 
 void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianParams& median,
-                  std::int16_t invalid, const Backend& backend) {
+                  std::int16_t invalid, const Backend& backend, RowRange rows) {
   validate(median);
   if (median.kernelSize == 0)
     throw Error("medianFilter: kernelSize 0 means off; skip the call, or use 3 or 5");
@@ -127,12 +140,13 @@ void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianP
   if (overlaps(src, dst))
     throw Error("medianFilter: input and output must not overlap (it cannot run in place)");
   requireKernel(reinterpret_cast<const void*>(backend.kernels.medianFilter), backend, "median");
-  backend.kernels.medianFilter(src, dst, median.kernelSize, effectiveMinValid(median), invalid);
+  backend.kernels.medianFilter(src, dst, median.kernelSize, effectiveMinValid(median), invalid,
+                               resolveRows(rows, src.height));
 }
 
 void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
                   std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
-                  const ImageView& segmented, const Backend& backend) {
+                  const ImageView& segmented, const Backend& backend, RowRange rows) {
   checkView(disparity, PixelType::S16C1, "disparity");
   checkView(mask, PixelType::U8C1, "mask output");
   checkSameSize(disparity, "disparity", mask, "mask output");
@@ -153,7 +167,8 @@ void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t>
     throw Error("horopterMask: the mask must not overlap the disparity");
   requireKernel(reinterpret_cast<const void*>(backend.kernels.horopterMask), backend,
                 "horopter mask");
-  backend.kernels.horopterMask(disparity, thresholds, invalid, mask, image, segmented);
+  backend.kernels.horopterMask(disparity, thresholds, invalid, mask, image, segmented,
+                               resolveRows(rows, disparity.height));
 }
 
 }  // namespace horopter

@@ -11,7 +11,7 @@
 //   the host, in floating point; this kernel sees integers only. A column
 //   where no point in front of the camera is inside holds INT16_MAX.
 //   segmented(x, y) = mask(x, y) ? I(x, y) : 0, every channel; written only
-//   when a segmented view is given.
+//   when a segmented view is given. Only the rows in `rows` are written.
 #include <cstdint>
 
 #include "horopter_mask/horopter_mask.hpp"
@@ -20,10 +20,10 @@ namespace horopter::scalar {
 
 void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
                   std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
-                  const ImageView& segmented) {
+                  const ImageView& segmented, RowRange rows) {
   const int width = disparity.width;
   const int channels = segmented.empty() ? 0 : static_cast<int>(pixelBytes(image.type));
-  for (int y = 0; y < disparity.height; ++y) {
+  for (int y = rows.begin; y < rows.end; ++y) {
     const auto* d = disparity.row<std::int16_t>(y);
     auto* m = mask.row<std::uint8_t>(y);
     for (int x = 0; x < width; ++x) {

@@ -13,7 +13,8 @@
 //   average, so no new disparity values appear.
 //   This is how the dense map is interpolated: a hole surrounded mostly by
 //   valid disparities takes their median; a hole in a mostly invalid area
-//   stays a hole.
+//   stays a hole. Only the output rows in `rows` are written; the window reads
+//   the input rows around them.
 #include <algorithm>
 #include <cstdint>
 
@@ -22,10 +23,10 @@
 namespace horopter::scalar {
 
 void medianFilter(const ConstImageView& src, const ImageView& dst, int kernelSize, int minValid,
-                  std::int16_t invalid) {
+                  std::int16_t invalid, RowRange rows) {
   const int h = kernelSize / 2;
   std::int16_t window[25];
-  for (int y = 0; y < src.height; ++y) {
+  for (int y = rows.begin; y < rows.end; ++y) {
     auto* out = dst.row<std::int16_t>(y);
     for (int x = 0; x < src.width; ++x) {
       int n = 0;

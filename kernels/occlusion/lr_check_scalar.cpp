@@ -10,7 +10,8 @@
 //     if 0 <= xr < W and WR(xr, y) != minDisparity - 1
 //        and |dl - WR(xr, y)| > disp12MaxDiff:  D(x, y) = invalid
 //   A pixel whose right partner is outside the image or has no winner is kept:
-//   there is nothing to check it against.
+//   there is nothing to check it against. Each row is independent; only the
+//   rows in `rows` are touched.
 #include <cstdint>
 #include <cstdlib>
 
@@ -19,12 +20,12 @@
 namespace horopter::scalar {
 
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
-                    const StereoParams& params) {
+                    const StereoParams& params, RowRange rows) {
   if (params.disp12MaxDiff < 0) return;
   const std::int16_t invalid = invalidDisparity(params);
   const int noWinner = params.minDisparity - 1;
   const int width = disparity.width;
-  for (int y = 0; y < disparity.height; ++y) {
+  for (int y = rows.begin; y < rows.end; ++y) {
     auto* d = disparity.row<std::int16_t>(y);
     const auto* wr = winnerRight.row<std::int16_t>(y);
     for (int x = 0; x < width; ++x) {

@@ -12,7 +12,8 @@
 //   c = clamp(sobel, -cap, cap)
 //   filtered(x, y) = c + cap   in [0, 2 cap]   (the matching input)
 //   texture(x, y)  = |c|       in [0, cap]     (the texture-check input)
-//   Either output may be an empty view and is then not written.
+//   Either output may be an empty view and is then not written. Only the rows
+//   in `rows` are written; the rows above and below are read as neighbours.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -33,10 +34,10 @@ int reflect101(int y, int height) {
 }  // namespace
 
 void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
-                     const ImageView& texture) {
+                     const ImageView& texture, RowRange rows) {
   const int width = src.width;
   const int height = src.height;
-  for (int y = 0; y < height; ++y) {
+  for (int y = rows.begin; y < rows.end; ++y) {
     const auto* above = src.row<std::uint8_t>(reflect101(y - 1, height));
     const auto* here = src.row<std::uint8_t>(y);
     const auto* below = src.row<std::uint8_t>(reflect101(y + 1, height));

@@ -2,6 +2,7 @@
 // and the geometry every backend shares.
 #pragma once
 
+#include "horopter/backend.hpp"
 #include "horopter/image.hpp"
 #include "horopter/stereo_params.hpp"
 
@@ -19,7 +20,15 @@ MatchRegion matchRegion(int width, int height, const StereoParams& params);
 namespace scalar {
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight);
+                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
 }  // namespace scalar
+
+// AVX2 version (kernels/sad/sad_avx2.cpp): bit-exact with scalar; call only
+// where the CPU has AVX2 (the registry checks).
+namespace avx2 {
+void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                 const ConstImageView& texture, const StereoParams& params,
+                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
+}  // namespace avx2
 
 }  // namespace horopter

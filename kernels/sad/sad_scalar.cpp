@@ -40,6 +40,10 @@
 //   right pixel (xr, y), the d of least C(xr + d, y, d) over the d whose left
 //   pixel xr + d lies in the region's columns; ties go to the smallest d;
 //   minDisparity - 1 where no d qualifies. Texture and uniqueness play no part.
+//
+//   Only the output rows in `rows` are written (both maps); every row's result
+//   depends on the input rows of its window alone, so stripes of a frame give
+//   the whole frame's result.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -99,7 +103,7 @@ std::int16_t decidePixel(const std::int32_t* costs, int textureSum, const Stereo
 
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight) {
+                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows) {
   const int width = left.width;
   const int height = left.height;
   const int r = params.blockSize / 2;
@@ -108,11 +112,13 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   const std::int16_t invalid = invalidDisparity(params);
   const auto noWinner = static_cast<std::int16_t>(minD - 1);
 
-  for (int y = 0; y < height; ++y) {
+  for (int y = rows.begin; y < rows.end; ++y) {
     std::fill_n(disparity.row<std::int16_t>(y), width, invalid);
     std::fill_n(winnerRight.row<std::int16_t>(y), width, noWinner);
   }
-  const MatchRegion region = matchRegion(width, height, params);
+  MatchRegion region = matchRegion(width, height, params);
+  region.y0 = std::max(region.y0, rows.begin);
+  region.y1 = std::min(region.y1, rows.end);
   if (region.empty()) return;
 
   // Column sums over the window's height, for the columns the windows of the

@@ -617,47 +617,49 @@ namespace wrong {
 
 // Matching one 1/16 px off at a single pixel.
 void matchOffByOne(const ConstImageView& l, const ConstImageView& r, const ConstImageView& t,
-                   const StereoParams& p, const ImageView& d, const ImageView& wr) {
-  scalarBackend().kernels.matchBlocks(l, r, t, p, d, wr);
-  d.row<std::int16_t>(d.height / 2)[d.width / 2] += 1;
+                   const StereoParams& p, const ImageView& d, const ImageView& wr, RowRange rows) {
+  scalarBackend().kernels.matchBlocks(l, r, t, p, d, wr, rows);
+  if (rows.begin <= d.height / 2 && d.height / 2 < rows.end)
+    d.row<std::int16_t>(d.height / 2)[d.width / 2] += 1;
 }
 // Writes one pixel past the end of the first row when the stride has room
 // (a canary there; never outside the buffer, so AddressSanitizer stays quiet).
 void medianOverrun(const ConstImageView& s, const ImageView& d, int k, int minValid,
-                   std::int16_t invalid) {
-  scalarBackend().kernels.medianFilter(s, d, k, minValid, invalid);
+                   std::int16_t invalid, RowRange rows) {
+  scalarBackend().kernels.medianFilter(s, d, k, minValid, invalid, rows);
   if (d.strideBytes >= static_cast<std::ptrdiff_t>((d.width + 1) * sizeof(std::int16_t)))
     d.row<std::int16_t>(0)[d.width] = 0x1234;
 }
 // Assumes tightly packed rows.
 void prefilterIgnoresStride(const ConstImageView& s, int cap, const ImageView& f,
-                            const ImageView& t) {
+                            const ImageView& t, RowRange rows) {
   ConstImageView src = s;
   src.strideBytes = s.width;
   ImageView filtered = f, texture = t;
   filtered.strideBytes = f.width;
   texture.strideBytes = t.width;
-  scalarBackend().kernels.prefilterXSobel(src, cap, filtered, texture);
+  scalarBackend().kernels.prefilterXSobel(src, cap, filtered, texture, rows);
 }
 // Scribbles on its (const) input.
 void maskModifiesInput(const ConstImageView& d, std::span<const std::int16_t> thresholds,
                        std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
-                       const ImageView& segmented) {
-  scalarBackend().kernels.horopterMask(d, thresholds, invalid, mask, image, segmented);
+                       const ImageView& segmented, RowRange rows) {
+  scalarBackend().kernels.horopterMask(d, thresholds, invalid, mask, image, segmented, rows);
   const_cast<std::int16_t*>(d.row<std::int16_t>(0))[0] ^= 1;
 }
 // Never removes a speckle.
 void speckleNoop(const ImageView&, const StereoParams&) {}
 // Rounds the left disparity down instead of to nearest.
-void lrTruncates(const ImageView& d, const ConstImageView& wr, const StereoParams& p) {
+void lrTruncates(const ImageView& d, const ConstImageView& wr, const StereoParams& p,
+                 RowRange rows) {
   TestImage shifted = copyOf(d);
   const std::int16_t invalid = invalidDisparity(p);
   for (int y = 0; y < d.height; ++y)
     for (int x = 0; x < d.width; ++x)
       if (shifted.at<std::int16_t>(x, y) != invalid) shifted.at<std::int16_t>(x, y) &= ~15;
   TestImage checked = shifted.clone();
-  scalarBackend().kernels.leftRightCheck(checked.view(), wr, p);
-  for (int y = 0; y < d.height; ++y)
+  scalarBackend().kernels.leftRightCheck(checked.view(), wr, p, rows);
+  for (int y = rows.begin; y < rows.end; ++y)
     for (int x = 0; x < d.width; ++x)
       if (checked.at<std::int16_t>(x, y) == invalid) d.row<std::int16_t>(y)[x] = invalid;
 }

@@ -1,0 +1,81 @@
+#include "horopter/thread_pool.hpp"
+
+#include <string>
+
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+ThreadPool::ThreadPool(int threads) {
+  if (threads < 1 || threads > 256)
+    throw Error("thread count must be within 1..256, got " + std::to_string(threads));
+  workers_.reserve(static_cast<std::size_t>(threads - 1));
+  for (int i = 1; i < threads; ++i)
+    workers_.emplace_back([this] { workerLoop(); });
+}
+
+ThreadPool::~ThreadPool() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  for (auto& w : workers_)
+    w.join();
+}
+
+void ThreadPool::drain() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (task_ != nullptr && next_ < count_) {
+    const int index = next_++;
+    const auto* task = task_;
+    lock.unlock();
+    try {
+      (*task)(index);
+    } catch (...) {
+      std::lock_guard<std::mutex> errorLock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+    lock.lock();
+    if (++finished_ == count_) done_.notify_all();
+  }
+}
+
+void ThreadPool::workerLoop() {
+  unsigned seen = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+      if (stopping_) return;
+      seen = generation_;
+    }
+    drain();
+  }
+}
+
+void ThreadPool::run(int count, const std::function<void(int)>& task) {
+  if (count <= 0) return;
+  if (workers_.empty() || count == 1) {
+    for (int i = 0; i < count; ++i)
+      task(i);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    task_ = &task;
+    count_ = count;
+    next_ = 0;
+    finished_ = 0;
+    error_ = nullptr;
+    ++generation_;
+  }
+  wake_.notify_all();
+  drain();
+  std::unique_lock<std::mutex> lock(mutex_);
+  done_.wait(lock, [&] { return finished_ == count_; });
+  task_ = nullptr;
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+}
+
+}  // namespace horopter
