@@ -7,7 +7,7 @@
 
 #include "bench_inputs.hpp"
 #include "bench_support.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/frontend.hpp"
 #include "horopter/opencv.hpp"
 #include "horopter/stereo_eval.hpp"
 #include "registration.hpp"
@@ -16,27 +16,16 @@ namespace horopter::bench {
 
 namespace {
 
-constexpr int kPeerThreads[] = {1, 2};
-
-void runOurs(benchmark::State& state, const Backend& backend, const MatchSetting& setting) {
+// The front end with the median off and the speckle filter off in the
+// parameters is exactly prefilter + matching + left-right check.
+void runOurs(benchmark::State& state, const Backend& backend, const MatchSetting& setting,
+             int threads) {
   const StereoPair& pair = stereoPair(setting.size);
-  const StereoParams params = matchParams(setting);
-  const int width = setting.size.width;
-  const int height = setting.size.height;
-  Image leftFiltered(width, height, PixelType::U8C1);
-  Image rightFiltered(width, height, PixelType::U8C1);
-  Image texture(width, height, PixelType::U8C1);
-  Image disparity(width, height, PixelType::S16C1);
-  Image winnerRight(width, height, PixelType::S16C1);
-
-  for (auto _ : state) {
-    prefilterXSobel(pair.left.view(), params.preFilterCap, leftFiltered.view(), texture.view(),
-                    backend);
-    prefilterXSobel(pair.right.view(), params.preFilterCap, rightFiltered.view(), {}, backend);
-    matchBlocks(leftFiltered.view(), rightFiltered.view(), texture.view(), params, disparity.view(),
-                winnerRight.view(), backend);
-    leftRightCheck(disparity.view(), winnerRight.view(), params, backend);
-  }
+  MedianParams noMedian;
+  noMedian.kernelSize = 0;
+  StereoFrontend frontend(matchParams(setting), noMedian, backend, threads);
+  for (auto _ : state)
+    frontend.computeDisparity(pair.left.view(), pair.right.view());
   setPixelCounters(state, setting);
 }
 
@@ -73,13 +62,17 @@ void runPeer(benchmark::State& state, const MatchSetting& setting, int threads) 
 void registerDisparityRows() {
   for (const MatchSetting& setting : matchSettings(/*withTarget=*/true)) {
     for (const Backend* backend : availableBackends()) {
-      const std::string name = "disparity/" + backend->name + "/" + sizeTag(setting.size) + "/" +
-                               matchTag(setting, kOurThreads);
-      measure(benchmark::RegisterBenchmark(
-          name.c_str(),
-          [backend, setting](benchmark::State& state) { runOurs(state, *backend, setting); }));
+      for (const int threads : kThreadCounts) {
+        const std::string name = "disparity/" + backend->name + "/" + sizeTag(setting.size) + "/" +
+                                 matchTag(setting, threads);
+        auto* row = measure(benchmark::RegisterBenchmark(
+            name.c_str(), [backend, setting, threads](benchmark::State& state) {
+              runOurs(state, *backend, setting, threads);
+            }));
+        if (threads > 1) row->UseRealTime();
+      }
     }
-    for (const int threads : kPeerThreads) {
+    for (const int threads : kThreadCounts) {
       const std::string name =
           "opencv_stereobm/" + sizeTag(setting.size) + "/" + matchTag(setting, threads);
       auto* row = measure(benchmark::RegisterBenchmark(

@@ -11,12 +11,13 @@ namespace horopter::bench {
 
 namespace {
 
-void runFrontend(benchmark::State& state, const Backend& backend, const MatchSetting& setting) {
+void runFrontend(benchmark::State& state, const Backend& backend, const MatchSetting& setting,
+                 int threads) {
   const StereoPair& pair = stereoPair(setting.size);
   const std::vector<std::int16_t> thresholds = sceneThresholds(setting.size);
   // The front end allocates its buffers in the first frame and reuses them;
   // with many iterations that first frame is amortised.
-  StereoFrontend frontend(frontendParams(setting), MedianParams{}, backend);
+  StereoFrontend frontend(frontendParams(setting), MedianParams{}, backend, threads);
   for (auto _ : state) {
     frontend.computeDisparity(pair.left.view(), pair.right.view());
     frontend.computeMask(thresholds, pair.leftColour.view());
@@ -29,11 +30,15 @@ void runFrontend(benchmark::State& state, const Backend& backend, const MatchSet
 void registerFrontendRows() {
   for (const MatchSetting& setting : matchSettings(/*withTarget=*/false)) {
     for (const Backend* backend : availableBackends()) {
-      const std::string name = "frontend/" + backend->name + "/" + sizeTag(setting.size) + "/" +
-                               matchTag(setting, kOurThreads);
-      measure(benchmark::RegisterBenchmark(
-          name.c_str(),
-          [backend, setting](benchmark::State& state) { runFrontend(state, *backend, setting); }));
+      for (const int threads : kThreadCounts) {
+        const std::string name = "frontend/" + backend->name + "/" + sizeTag(setting.size) + "/" +
+                                 matchTag(setting, threads);
+        auto* row = measure(benchmark::RegisterBenchmark(
+            name.c_str(), [backend, setting, threads](benchmark::State& state) {
+              runFrontend(state, *backend, setting, threads);
+            }));
+        if (threads > 1) row->UseRealTime();
+      }
     }
   }
 }

@@ -21,6 +21,9 @@ namespace horopter::bench {
 
 namespace {
 
+// Kernel rows call one kernel, whole frame, on the calling thread.
+constexpr int kKernelThreads = 1;
+
 constexpr int kCleanupDisparities = 64;
 constexpr int kMedianSizes[] = {3, 5};
 
@@ -165,12 +168,12 @@ void registerKernelRows() {
              [&b, size](benchmark::State& state) { runPrefilter(state, b, size); });
     }
     for (const MatchSetting& setting : matchSettings(/*withTarget=*/false)) {
-      const std::string point = sizeTag(setting.size) + "/" + matchTag(setting, kOurThreads);
+      const std::string point = sizeTag(setting.size) + "/" + matchTag(setting, kKernelThreads);
       addRow("sad" + tail + point,
              [&b, setting](benchmark::State& state) { runSad(state, b, setting); });
     }
     for (const MatchSetting& setting : matchSettings(/*withTarget=*/false)) {
-      const std::string point = sizeTag(setting.size) + "/" + matchTag(setting, kOurThreads);
+      const std::string point = sizeTag(setting.size) + "/" + matchTag(setting, kKernelThreads);
       addRow("lr_check" + tail + point,
              [&b, setting](benchmark::State& state) { runLeftRightCheck(state, b, setting); });
     }

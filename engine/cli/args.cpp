@@ -1,6 +1,8 @@
 #include "args.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <thread>
 
 #include "horopter/error.hpp"
 
@@ -114,6 +116,14 @@ MedianParams parseMedianFlags(Args& args, MedianParams m) {
   return m;
 }
 
+int parseThreads(Args& args) {
+  const int fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = args.intValue("--threads", fallback);
+  if (threads < 1 || threads > 256)
+    throw Error("--threads must be within 1..256, got " + std::to_string(threads));
+  return threads;
+}
+
 std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
   std::ostringstream o;
   o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n"
@@ -138,7 +148,9 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
     << "  --median-size N          hole-filling median: 0 (off), 3 or 5 (default " << m.kernelSize
     << ")\n"
     << "  --median-min-valid N     valid neighbours needed to fill a hole; 0 = more than half\n"
-    << "                           the window (default " << m.minValidToFill << ")\n";
+    << "                           the window (default " << m.minValidToFill << ")\n"
+    << "  --threads N              threads for the front end's stripes (default: all "
+    << std::max(1u, std::thread::hardware_concurrency()) << ")\n";
   return o.str();
 }
 

@@ -34,6 +34,8 @@ class Args {
 // The stereo flags every command shares (kebab-case names of StereoParams).
 StereoParams parseStereoFlags(Args& args, StereoParams defaults);
 MedianParams parseMedianFlags(Args& args, MedianParams defaults);
+// --threads N: 1..256, default all hardware threads.
+int parseThreads(Args& args);
 // Help text for those flags, with the defaults.
 std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median);
 

@@ -25,6 +25,7 @@ struct PairJob {
   StereoParams stereo;
   MedianParams median;
   std::string backend = "auto";
+  int threads = 1;
   std::optional<double> fixationDisparity;  // px; default: the middle of the search range
   std::optional<double> focalPx;            // px; default: the image width
 };
@@ -41,11 +42,12 @@ int runPair(const PairJob& job) {
   const cv::Mat right = toGrey(rightColour);
 
   const Backend& backend = findBackend(job.backend);
-  StereoFrontend frontend(job.stereo, job.median, backend);
+  StereoFrontend frontend(job.stereo, job.median, backend, job.threads);
   std::cerr << "horopter: " << left.cols << "x" << left.rows << ", disparities "
             << job.stereo.minDisparity << ".."
             << job.stereo.minDisparity + job.stereo.numDisparities - 1 << ", block "
-            << job.stereo.blockSize << ", backend " << backend.name << "\n";
+            << job.stereo.blockSize << ", backend " << backend.name << ", " << job.threads
+            << " thread(s)\n";
   frontend.computeDisparity(viewOf(left), viewOf(right));
 
   RectifiedGeometry geometry;
@@ -81,7 +83,7 @@ const char* kPairHelpTail =
     "                           (default: the middle of the search range)\n"
     "  --focal-px F             focal length of the rectified pair (default: image width)\n"
     "Other:\n"
-    "  --backend B              scalar or auto (default auto; see horopter devices)\n"
+    "  --backend B              scalar, avx2 or auto (default auto; see horopter devices)\n"
     "  -o, --out DIR            output folder (default out)\n"
     "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid), DIR/disparity_color.png\n"
     "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
@@ -99,6 +101,7 @@ void parseCommon(Args& args, PairJob& job) {
   job.stereo = parseStereoFlags(args, job.stereo);
   job.median = parseMedianFlags(args, job.median);
   job.backend = args.stringValue("--backend", job.backend);
+  job.threads = parseThreads(args);
   job.fixationDisparity = positiveOption(args, "--fixation-disparity");
   job.focalPx = positiveOption(args, "--focal-px");
   job.outDir = args.stringValue("-o", args.stringValue("--out", "out"));

@@ -39,8 +39,9 @@ int runEvalStereo(Args& args) {
            "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown.\n\n"
         << stereoFlagsHelp(StereoParams{}, MedianParams{})
         << "Other:\n"
-           "  --backend B              scalar or auto (default auto)\n"
-           "  --peer opencv            also run cv::StereoBM with the same parameters\n"
+           "  --backend B              scalar, avx2 or auto (default auto)\n"
+           "  --peer opencv            also run cv::StereoBM with the same parameters and the\n"
+           "                           same --threads\n"
            "  --runs N                 timed runs per method, after one warm-up (default 3)\n"
            "  --json                   print one JSON object {\"horopter\": {...}, \"opencv\": "
            "{...}}\n"
@@ -57,6 +58,7 @@ int runEvalStereo(Args& args) {
   const std::string peer = args.stringValue("--peer", "");
   EvalOptions options;
   options.timedRuns = args.intValue("--runs", 3);
+  options.threads = parseThreads(args);
   const bool asJson = args.flag("--json");
   const bool requireParity = args.flag("--require-peer-parity");
   args.finish("eval-stereo");

@@ -117,7 +117,7 @@ StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const c
                               const StereoParams& params, const MedianParams& median,
                               const Backend& backend, const EvalOptions& options) {
   checkPair(left, right, gtPx);
-  StereoFrontend frontend(params, median, backend);
+  StereoFrontend frontend(params, median, backend, options.threads);
   const double ms =
       timeRuns(options, [&] { frontend.computeDisparity(viewOf(left), viewOf(right)); });
   StereoScores s = scoreDisparity(frontend.disparity().view(), invalidDisparity(params), gtPx);
@@ -149,7 +149,16 @@ StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, c
   checkPair(left, right, gtPx);
   const cv::Ptr<cv::StereoBM> bm = makeOpenCvStereoBM(params);
   cv::Mat disparity;
-  const double ms = timeRuns(options, [&] { bm->compute(left, right, disparity); });
+  const int previousThreads = cv::getNumThreads();
+  cv::setNumThreads(options.threads);
+  double ms = 0;
+  try {
+    ms = timeRuns(options, [&] { bm->compute(left, right, disparity); });
+  } catch (...) {
+    cv::setNumThreads(previousThreads);
+    throw;
+  }
+  cv::setNumThreads(previousThreads);
   StereoScores s = scoreDisparity(viewOf(disparity), invalidDisparity(params), gtPx);
   s.ms = ms;
   s.backend = "opencv-stereobm";

@@ -44,6 +44,7 @@ StereoScores scoreDisparity(const ConstImageView& disparity, std::int16_t invali
 struct EvalOptions {
   int warmupRuns = 1;
   int timedRuns = 3;
+  int threads = 1;  // for Horopter's stripes and for cv::setNumThreads alike
 };
 
 // Runs Horopter's front end (prefilter through median) and scores its output.
@@ -58,7 +59,8 @@ StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const c
 cv::Ptr<cv::StereoBM> makeOpenCvStereoBM(const StereoParams& params);
 
 // Runs cv::StereoBM with the same parameters (x-Sobel prefilter, texture,
-// uniqueness, speckles; its own left-right check) and scores its output.
+// uniqueness, speckles; its own left-right check) on options.threads threads
+// (OpenCV's setting is restored afterwards) and scores its output.
 StereoScores evaluateOpenCvStereoBM(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
                                     const StereoParams& params, const EvalOptions& options = {});
 
