@@ -38,8 +38,9 @@ bool cpuHasAvx2() {
 #endif
 }
 
-// AVX2 kernels where they exist. The speckle filter is a flood fill with no
-// data parallelism worth vectorising, so every backend shares the scalar one.
+// AVX2 kernels where they exist. The speckle filter is all branches and
+// memory, nothing to vectorise: this backend runs the portable union-find
+// version.
 Backend makeAvx2() {
   Backend b;
   b.name = "avx2";
@@ -49,7 +50,7 @@ Backend makeAvx2() {
   b.kernels.prefilterXSobel = avx2::prefilterXSobel;
   b.kernels.matchBlocks = avx2::matchBlocks;
   b.kernels.leftRightCheck = avx2::leftRightCheck;
-  b.kernels.filterSpeckles = scalar::filterSpeckles;
+  b.kernels.filterSpeckles = unionfind::filterSpeckles;
   b.kernels.medianFilter = avx2::medianFilter;
   b.kernels.horopterMask = avx2::horopterMask;
   return b;

@@ -17,3 +17,9 @@ namespace horopter::avx2 {
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
                     const StereoParams& params, RowRange rows);
 }  // namespace horopter::avx2
+
+// Union-find labelling (kernels/occlusion/speckle_unionfind.cpp): the same
+// blobs as the reference's flood fill, faster; portable C++.
+namespace horopter::unionfind {
+void filterSpeckles(const ImageView& disparity, const StereoParams& params);
+}  // namespace horopter::unionfind
