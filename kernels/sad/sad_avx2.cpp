@@ -1,16 +1,630 @@
-// AVX2 sad: bit-exact with the scalar reference.
+// AVX2 SAD block matching: bit-exact with the scalar reference.
 //
 // Strategy
-//   Not vectorised yet: forwards to the scalar reference, which is trivially
-//   bit-exact. The vector version replaces this body.
+//   Per output row, three passes over the region's pixels (i = x - x0, P of
+//   them), with 16-bit costs biased by 0x8000 so that signed compares and min
+//   order them as unsigned.
+//
+//   Overflow bound: a window cost is at most maxDiff * blockSize^2, maxDiff
+//   bounding |L - R| from the inputs' actual value ranges (scanned over the
+//   rows this call reads). Unless that is below 65535 (raw images with blocks
+//   over 15, x-Sobel inputs with blocks over 31 or so), the call forwards to
+//   the scalar reference. Otherwise every sum is exact: 16-bit lanes wrap
+//   modulo 2^16, but every true value they stand for fits, and 65535 is free
+//   to mark "no cost" (above every real cost, never within a limit).
+//
+//   1. Sweep (running sums, OpenCV's StereoBM scheme), one group of 16
+//      disparities at a time (lanes d = minD + 16g + k): columnSum[g][x]
+//      holds a column's costs over the window's height and slides down a row
+//      by adding |L - R| of the entering row and subtracting that of the
+//      leaving one; the right rows are copied reversed, so the pixels x - d
+//      of 16 consecutive d are 16 consecutive bytes, widened to 16 bits
+//      against the broadcast left pixel. Along x, the window cost takes in
+//      column x + r and drops column x - r - 1 (a zero column left of the
+//      first makes warming up the same step). Every 16 pixels, their 16 cost
+//      vectors are transposed in registers and stored by lane: costs[k][i].
+//   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
+//      cost over the lanes with a strict <, so the smallest d wins ties;
+//      the uniqueness limit (32-bit, the /100 in double, exact); the count
+//      of lanes with cost <= limit, which for a valid pixel is the winner
+//      plus those of its neighbours within the limit. The neighbours' costs
+//      C(b - 1), C(b + 1) are read per pixel (rows -1 and D hold "no cost"),
+//      then texture (window sums of 16-bit column sums), uniqueness, sub-
+//      pixel (truncated division in double, exact for these magnitudes) and
+//      rounding go 8 pixels per vector.
+//   3. Right winners, 16 right pixels per vector: right pixel xr meets lane k
+//      at pixel xr + minD + k - x0, so lane k's costs for 16 consecutive xr
+//      are 16 consecutive entries of its row (unaligned load; edges of "no
+//      cost" around each row). A strict < over increasing k keeps the
+//      smallest d on ties, as the reference does.
+//
+//   Tails: the last block of pixels is padded with "no cost" lanes; image
+//   rows are read only within [0, width), and outputs are written only in the
+//   rows asked for (every pixel of them, as the reference). Memory per call
+//   is O(width * numDisparities): nothing is kept per image row.
+#include <immintrin.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
 #include "sad/sad.hpp"
 
 namespace horopter::avx2 {
 
+namespace {
+
+constexpr int kLanes = 16;  // 16-bit lanes per vector
+constexpr std::uint16_t kBias = 0x8000;
+constexpr std::int16_t kNoCost = 0x7FFF;  // 65535 biased: above every real cost (< 65535)
+
+// A zero-initialised, 64-byte aligned array.
+template <typename T>
+class AlignedArray {
+ public:
+  explicit AlignedArray(std::size_t n)
+      : data_(static_cast<T*>(
+            ::operator new[](std::max<std::size_t>(n, 1) * sizeof(T), std::align_val_t{64}))) {
+    std::fill_n(data_, n, T{});
+  }
+  ~AlignedArray() { ::operator delete[](data_, std::align_val_t{64}); }
+  AlignedArray(const AlignedArray&) = delete;
+  AlignedArray& operator=(const AlignedArray&) = delete;
+  T* get() const { return data_; }
+
+ private:
+  T* data_;
+};
+
+inline __m256i load(const std::int16_t* p) {
+  return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
+}
+inline void store(std::int16_t* p, __m256i v) {
+  _mm256_store_si256(reinterpret_cast<__m256i*>(p), v);
+}
+inline __m256i loadu(const std::uint8_t* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+inline __m128i loadu128(const std::uint8_t* p) {
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+}
+// 16 bytes widened to 16-bit lanes.
+inline __m256i widen(const std::uint8_t* p) {
+  return _mm256_cvtepu8_epi16(loadu128(p));
+}
+inline __m256i load8x32(const int* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+inline void store8x32(int* p, __m256i v) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v);
+}
+
+// min and max byte of rows [y0, y1) of a U8C1 view, folded into lo and hi.
+void scanRange(const ConstImageView& view, int y0, int y1, int& lo, int& hi) {
+  __m256i vmin = _mm256_set1_epi8(-1), vmax = _mm256_setzero_si256();
+  for (int y = y0; y < y1; ++y) {
+    const auto* p = view.row<std::uint8_t>(y);
+    int x = 0;
+    for (; x + 32 <= view.width; x += 32) {
+      const __m256i v = loadu(p + x);
+      vmin = _mm256_min_epu8(vmin, v);
+      vmax = _mm256_max_epu8(vmax, v);
+    }
+    for (; x < view.width; ++x) {
+      lo = std::min<int>(lo, p[x]);
+      hi = std::max<int>(hi, p[x]);
+    }
+  }
+  alignas(32) std::uint8_t mins[32], maxs[32];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(mins), vmin);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(maxs), vmax);
+  for (int i = 0; i < 32; ++i) {
+    lo = std::min<int>(lo, mins[i]);
+    hi = std::max<int>(hi, maxs[i]);
+  }
+}
+
+// dst[i] = src[width - 1 - i] for i in [0, width).
+void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
+  const __m256i flip = _mm256_setr_epi8(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0, 15,
+                                        14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+  int i = 0;
+  for (; i + 32 <= width; i += 32) {
+    const __m256i v = _mm256_shuffle_epi8(loadu(src + width - 32 - i), flip);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + i), _mm256_permute4x64_epi64(v, 0x4E));
+  }
+  for (; i < width; ++i)
+    dst[i] = src[width - 1 - i];
+}
+
+// Transposes 16 vectors of 16 lanes: t[k] lane j = v[j] lane k. Each half of
+// 8 rows takes the classic three unpack stages within 128-bit lanes (an 8x8
+// transpose per lane); a 128-bit lane exchange joins the halves.
+[[gnu::always_inline]] inline void transpose16(const __m256i* v, __m256i* t) {
+  __m256i w[2][8];
+  for (int h = 0; h < 2; ++h) {
+    const __m256i* r = v + 8 * h;
+    __m256i s[8], u[8];
+    for (int m = 0; m < 4; ++m) {
+      s[2 * m] = _mm256_unpacklo_epi16(r[2 * m], r[2 * m + 1]);
+      s[2 * m + 1] = _mm256_unpackhi_epi16(r[2 * m], r[2 * m + 1]);
+    }
+    for (int m = 0; m < 2; ++m) {
+      u[4 * m] = _mm256_unpacklo_epi32(s[4 * m], s[4 * m + 2]);
+      u[4 * m + 1] = _mm256_unpackhi_epi32(s[4 * m], s[4 * m + 2]);
+      u[4 * m + 2] = _mm256_unpacklo_epi32(s[4 * m + 1], s[4 * m + 3]);
+      u[4 * m + 3] = _mm256_unpackhi_epi32(s[4 * m + 1], s[4 * m + 3]);
+    }
+    for (int m = 0; m < 4; ++m) {
+      w[h][2 * m] = _mm256_unpacklo_epi64(u[m], u[m + 4]);
+      w[h][2 * m + 1] = _mm256_unpackhi_epi64(u[m], u[m + 4]);
+    }
+  }
+  for (int c = 0; c < 8; ++c) {
+    t[c] = _mm256_permute2x128_si256(w[0][c], w[1][c], 0x20);
+    t[c + 8] = _mm256_permute2x128_si256(w[0][c], w[1][c], 0x31);
+  }
+}
+
+// Eight int32 lanes divided by 100, truncated (0 <= n < 2^31): in double, the
+// correctly rounded quotient cannot cross an integer.
+inline __m256i divideBy100(__m256i n) {
+  const __m256d hundred = _mm256_set1_pd(100.0);
+  const __m128i lo =
+      _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(n)), hundred));
+  const __m128i hi = _mm256_cvttpd_epi32(
+      _mm256_div_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(n, 1)), hundred));
+  return _mm256_set_m128i(hi, lo);
+}
+
+class Matcher {
+  // decideLeft and decideRight take 4 blocks of 16 pixels per pass.
+  static constexpr int kChunk = 4 * kLanes;
+
+ public:
+  Matcher(const ConstImageView& left, const ConstImageView& right, const ConstImageView& texture,
+          const StereoParams& params, const ImageView& disparity, const ImageView& winnerRight,
+          const MatchRegion& region)
+      : left_(left),
+        right_(right),
+        texture_(texture),
+        params_(params),
+        disparity_(disparity),
+        winnerRight_(winnerRight),
+        width_(left.width),
+        r_(params.blockSize / 2),
+        count_(params.numDisparities),
+        groups_(params.numDisparities / kLanes),
+        minD_(params.minDisparity),
+        x0_(region.x0),
+        x1_(region.x1),
+        xa_(region.x0 - r_),
+        xb_(region.x1 + r_),
+        cols_(xb_ - xa_ + 1),
+        pixels_(region.x1 - region.x0),
+        padded_((pixels_ + kChunk - 1) / kChunk * kChunk),
+        edge_(count_ + kChunk),
+        rowLen_(padded_ + 2 * edge_),
+        useTexture_(params.textureThreshold > 0),
+        columnSum_(static_cast<std::size_t>(groups_) * cols_ * kLanes),
+        columnTexture_(cols_),
+        leftIn_(static_cast<std::size_t>(cols_) * kLanes),
+        leftOut_(static_cast<std::size_t>(cols_) * kLanes),
+        reversedIn_(width_),
+        reversedOut_(width_),
+        costs_(static_cast<std::size_t>(count_ + 2) * rowLen_),
+        laneOf_(static_cast<std::size_t>(count_) * kLanes),
+        disparityOf_(static_cast<std::size_t>(count_) * kLanes),
+        pxTexture_(padded_),
+        pxMin_(padded_),
+        pxBest_(padded_),
+        pxLimit_(padded_),
+        pxAbove_(padded_),
+        pxBelowCost_(padded_),
+        pxAboveCost_(padded_) {
+    // Rows -1 and count, the edges and the columns past the last pixel hold
+    // "no cost": never a winner, never within a uniqueness limit (< 65535).
+    std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
+    for (int k = 0; k < count_; ++k) {
+      std::fill_n(laneOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(k));
+      std::fill_n(disparityOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(minD_ + k));
+    }
+  }
+
+  void run(int y0, int y1) {
+    for (int j = y0 - r_; j <= y0 + r_; ++j)
+      accumulateRow(j);
+    rowPass<false>(y0);
+    for (int y = y0 + 1; y < y1; ++y) {
+      reverseRow(right_.row<std::uint8_t>(y + r_), width_, reversedIn_.get());
+      reverseRow(right_.row<std::uint8_t>(y - r_ - 1), width_, reversedOut_.get());
+      if (useTexture_) slideTexture(y + r_, y - r_ - 1);
+      rowPass<true>(y);
+    }
+  }
+
+ private:
+  // Column sums of group g (lanes d = minD + 16g ..), column x.
+  std::int16_t* column(int g, int x) const {
+    return columnSum_.get() + (static_cast<std::size_t>(g) * cols_ + (x - xa_ + 1)) * kLanes;
+  }
+  std::uint16_t* columnTexture(int x) const { return columnTexture_.get() + (x - xa_ + 1); }
+  // Offset in a reversed right row of disparity minD for left column x.
+  int reversedBase(int x) const { return width_ - 1 - x + minD_; }
+  // Window costs of lane k (-1 ..= count) for pixels i = x - x0 from 0, biased.
+  std::int16_t* costs(int k) const {
+    return costs_.get() + static_cast<std::size_t>(k + 1) * rowLen_ + edge_;
+  }
+
+  // Adds row j's |L - R| to every column sum (and T to the texture sums).
+  void accumulateRow(int j) {
+    const auto* l = left_.row<std::uint8_t>(j);
+    reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn_.get());
+    for (int x = xa_; x < xb_; ++x) {
+      const __m256i lv = _mm256_set1_epi16(l[x]);
+      const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
+      for (int g = 0; g < groups_; ++g) {
+        std::int16_t* col = column(g, x);
+        const __m256i ad = _mm256_abs_epi16(_mm256_sub_epi16(lv, widen(rv + g * kLanes)));
+        store(col, _mm256_add_epi16(load(col), ad));
+      }
+    }
+    if (useTexture_) {
+      const auto* t = texture_.row<std::uint8_t>(j);
+      for (int x = xa_; x < xb_; ++x)
+        *columnTexture(x) = static_cast<std::uint16_t>(*columnTexture(x) + t[x]);
+    }
+  }
+
+  // Texture column sums: add row `in`, drop row `out`.
+  void slideTexture(int in, int out) {
+    const auto* tIn = texture_.row<std::uint8_t>(in);
+    const auto* tOut = texture_.row<std::uint8_t>(out);
+    int x = xa_;
+    for (; x + 16 <= xb_; x += 16) {
+      auto* p = reinterpret_cast<__m256i*>(columnTexture(x));
+      const __m256i sum = _mm256_add_epi16(_mm256_loadu_si256(p), widen(tIn + x));
+      _mm256_storeu_si256(p, _mm256_sub_epi16(sum, widen(tOut + x)));
+    }
+    for (; x < xb_; ++x)
+      *columnTexture(x) = static_cast<std::uint16_t>(*columnTexture(x) + tIn[x] - tOut[x]);
+  }
+
+  template <bool kSlide>
+  void rowPass(int y) {
+    sweep<kSlide>(y);
+    decideLeft(disparity_.row<std::int16_t>(y));
+    decideRight(winnerRight_.row<std::int16_t>(y));
+  }
+
+  // The row's window costs into costs_, one group of 16 disparities at a
+  // time: along x, each column slides down a row (kSlide) and the window
+  // cost takes it in and drops column x - 2r - 1; every 16 pixels, their 16
+  // cost vectors are transposed in registers and stored by lane.
+  template <bool kSlide>
+  void sweep(int y) {
+    const auto* lIn = left_.row<std::uint8_t>(kSlide ? y + r_ : y);
+    const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
+    // Locals: the stores below could alias members as far as the compiler knows.
+    const int xa = xa_, xb = xb_, pixels = pixels_, window = 2 * r_ + 1;
+    if constexpr (kSlide) {
+      // Left pixels broadcast once, for all groups.
+      std::int16_t* in = leftIn_.get();
+      std::int16_t* out = leftOut_.get();
+      for (int x = xa; x < xb; ++x, in += kLanes, out += kLanes) {
+        store(in, _mm256_set1_epi16(lIn[x]));
+        store(out, _mm256_set1_epi16(lOut[x]));
+      }
+    }
+    if (useTexture_) {
+      const std::uint16_t* t = columnTexture(xa);  // column xa - 1 (t[-1]) is zero
+      int* sums = pxTexture_.get();
+      int sum = 0;
+      for (int n = 0; n < window - 1; ++n)
+        sum += t[n];
+      for (int i = 0; i < pixels; ++i) {
+        sum += t[i + window - 1] - t[i - 1];
+        sums[i] = sum;
+      }
+    }
+    const std::ptrdiff_t rowLen = rowLen_;
+
+    for (int g = 0; g < groups_; ++g) {
+      std::int16_t* col = column(g, xa_);
+      const std::int16_t* drop = column(g, xa_ - 1);  // all zeros: nothing leaves while warming up
+      const std::uint8_t* ri = reversedIn_.get() + reversedBase(xa_) + g * kLanes;
+      const std::uint8_t* ro = reversedOut_.get() + reversedBase(xa_) + g * kLanes;
+      const std::int16_t* li = leftIn_.get();
+      const std::int16_t* lo = leftOut_.get();
+      __m256i cost = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+      // One column: slide it, add it, drop `drop`; on to the next column.
+      const auto step = [&](bool moveDrop) {
+        __m256i c = load(col);
+        if constexpr (kSlide) {
+          const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(load(li), widen(ri)));
+          const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(load(lo), widen(ro)));
+          c = _mm256_add_epi16(c, _mm256_sub_epi16(in, out));
+          store(col, c);
+        }
+        cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop)));
+        col += kLanes;
+        li += kLanes;
+        lo += kLanes;
+        --ri;
+        --ro;
+        if (moveDrop) drop += kLanes;
+        return cost;
+      };
+      for (int n = 0; n < window - 1; ++n)
+        step(false);
+      for (int i0 = 0; i0 < pixels; i0 += kLanes) {
+        __m256i v[kLanes], t[kLanes];
+        if (i0 + kLanes <= pixels) {
+#pragma GCC unroll 16
+          for (int j = 0; j < kLanes; ++j)
+            v[j] = step(true);
+        } else {
+          for (int j = 0; j < kLanes; ++j)
+            v[j] = i0 + j < pixels ? step(true) : _mm256_set1_epi16(kNoCost);
+        }
+        transpose16(v, t);
+        std::int16_t* row = costs(g * kLanes) + i0;
+        for (int k = 0; k < kLanes; ++k, row += rowLen)
+          store(row, t[k]);
+      }
+    }
+  }
+
+  // The left view's decisions of one row, 16 pixels per vector:
+  //   winner: the least cost over the lanes, strict < so the first (smallest
+  //   d) wins ties; uniqueness: the pixel is valid iff every lane with cost
+  //   <= limit is the winner or next to it, i.e. iff the count of such lanes
+  //   equals 1 + [C(b - 1) <= limit] + [C(b + 1) <= limit] (rows -1 and count
+  //   hold "no cost", above any limit). The neighbours' costs are read per
+  //   pixel, then sub-pixel and rounding go 8 pixels at a time.
+  void decideLeft(std::int16_t* outDisparity) const {
+    const int ratio = params_.uniquenessRatio;
+    const std::ptrdiff_t rowLen = rowLen_;
+    // kBlocks blocks of 16 pixels per pass over the lanes: independent
+    // chains, and whole cache lines of each lane's row.
+    constexpr int kBlocks = 4;
+    for (int i0 = 0; i0 < pixels_; i0 += kBlocks * kLanes) {
+      __m256i best[kBlocks], lane[kBlocks];
+      for (int n = 0; n < kBlocks; ++n) {
+        best[n] = _mm256_set1_epi16(kNoCost);
+        lane[n] = _mm256_setzero_si256();
+      }
+      const std::int16_t* c = costs(0) + i0;
+      for (int k = 0; k < count_; ++k, c += rowLen) {
+        const __m256i laneK = load(laneOf_.get() + k * kLanes);
+        for (int n = 0; n < kBlocks; ++n) {
+          const __m256i now = load(c + n * kLanes);
+          const __m256i better = _mm256_cmpgt_epi16(best[n], now);
+          best[n] = _mm256_min_epi16(best[n], now);
+          lane[n] = _mm256_blendv_epi8(lane[n], laneK, better);
+        }
+      }
+      __m256i limit[kBlocks];
+      for (int n = 0; n < kBlocks; ++n) {
+        const int i = i0 + n * kLanes;
+        const __m256i least =
+            _mm256_xor_si256(best[n], _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
+        const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
+        const __m256i minHi = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(least, 1));
+        store8x32(pxMin_.get() + i, minLo);
+        store8x32(pxMin_.get() + i + 8, minHi);
+        store8x32(pxBest_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(lane[n])));
+        store8x32(pxBest_.get() + i + 8,
+                  _mm256_cvtepi16_epi32(_mm256_extracti128_si256(lane[n], 1)));
+        if (ratio > 0) {
+          const __m256i ratioV = _mm256_set1_epi32(ratio);
+          const __m256i limitLo =
+              _mm256_add_epi32(minLo, divideBy100(_mm256_mullo_epi32(minLo, ratioV)));
+          const __m256i limitHi =
+              _mm256_add_epi32(minHi, divideBy100(_mm256_mullo_epi32(minHi, ratioV)));
+          store8x32(pxLimit_.get() + i, limitLo);
+          store8x32(pxLimit_.get() + i + 8, limitHi);
+          // min(limit, 65535), biased, back in pixel order after packus.
+          limit[n] = _mm256_xor_si256(
+              _mm256_permute4x64_epi64(_mm256_packus_epi32(limitLo, limitHi), 0xD8),
+              _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
+        }
+      }
+      if (ratio > 0) {
+        __m256i above[kBlocks];
+        for (int n = 0; n < kBlocks; ++n)
+          above[n] = _mm256_setzero_si256();
+        c = costs(0) + i0;
+        for (int k = 0; k < count_; ++k, c += rowLen) {
+          for (int n = 0; n < kBlocks; ++n)
+            above[n] =
+                _mm256_sub_epi16(above[n], _mm256_cmpgt_epi16(load(c + n * kLanes), limit[n]));
+        }
+        for (int n = 0; n < kBlocks; ++n) {
+          const int i = i0 + n * kLanes;
+          store8x32(pxAbove_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(above[n])));
+          store8x32(pxAbove_.get() + i + 8,
+                    _mm256_cvtepi16_epi32(_mm256_extracti128_si256(above[n], 1)));
+        }
+      }
+    }
+    for (int i = 0; i < pixels_; ++i) {
+      const int b = pxBest_.get()[i];
+      pxBelowCost_.get()[i] = (costs(b - 1)[i] ^ kBias) & 0xFFFF;
+      pxAboveCost_.get()[i] = (costs(b + 1)[i] ^ kBias) & 0xFFFF;
+    }
+
+    const std::int16_t invalid = invalidDisparity(params_);
+    int i = 0;
+    for (; i + 8 <= pixels_; i += 8) {
+      const __m256i c0 = load8x32(pxMin_.get() + i), b = load8x32(pxBest_.get() + i);
+      const __m256i below = load8x32(pxBelowCost_.get() + i);
+      const __m256i above = load8x32(pxAboveCost_.get() + i);
+      __m256i bad = _mm256_setzero_si256();
+      if (useTexture_) {
+        bad = _mm256_cmpgt_epi32(_mm256_set1_epi32(params_.textureThreshold),
+                                 load8x32(pxTexture_.get() + i));
+      }
+      if (ratio > 0) {
+        const __m256i limit = load8x32(pxLimit_.get() + i);
+        const __m256i one = _mm256_set1_epi32(1);
+        // 1 + [below <= limit] + [above <= limit], as count - #above.
+        const __m256i expected = _mm256_sub_epi32(
+            _mm256_add_epi32(_mm256_add_epi32(one, one), one),
+            _mm256_add_epi32(_mm256_and_si256(_mm256_cmpgt_epi32(below, limit), one),
+                             _mm256_and_si256(_mm256_cmpgt_epi32(above, limit), one)));
+        const __m256i within =
+            _mm256_sub_epi32(_mm256_set1_epi32(count_), load8x32(pxAbove_.get() + i));
+        bad = _mm256_or_si256(
+            bad, _mm256_xor_si256(_mm256_cmpeq_epi32(within, expected), _mm256_set1_epi32(-1)));
+        bad = _mm256_or_si256(bad, _mm256_cmpgt_epi32(limit, _mm256_set1_epi32(0xFFFE)));
+      }
+      // At the ends of the range the missing side mirrors the other.
+      const __m256i cm =
+          _mm256_blendv_epi8(below, above, _mm256_cmpeq_epi32(b, _mm256_setzero_si256()));
+      const __m256i cp =
+          _mm256_blendv_epi8(above, below, _mm256_cmpeq_epi32(b, _mm256_set1_epi32(count_ - 1)));
+      const __m256i diff = _mm256_sub_epi32(cm, cp);
+      const __m256i den =
+          _mm256_add_epi32(_mm256_sub_epi32(_mm256_add_epi32(cm, cp), _mm256_add_epi32(c0, c0)),
+                           _mm256_abs_epi32(diff));
+      const __m256i num = _mm256_slli_epi32(diff, 8);
+      // Truncated quotient in double: |num| < 2^24, den < 2^18, so the
+      // rounding error (< 2^-46) cannot cross an integer.
+      const __m256i safeDen = _mm256_max_epi32(den, _mm256_set1_epi32(1));
+      const __m128i qLo =
+          _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(num)),
+                                            _mm256_cvtepi32_pd(_mm256_castsi256_si128(safeDen))));
+      const __m128i qHi = _mm256_cvttpd_epi32(
+          _mm256_div_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(num, 1)),
+                        _mm256_cvtepi32_pd(_mm256_extracti128_si256(safeDen, 1))));
+      const __m256i off = _mm256_and_si256(_mm256_set_m128i(qHi, qLo),
+                                           _mm256_cmpgt_epi32(den, _mm256_setzero_si256()));
+      const __m256i d = _mm256_add_epi32(b, _mm256_set1_epi32(minD_));
+      __m256i out = _mm256_srai_epi32(
+          _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(d, 8), off), _mm256_set1_epi32(8)),
+          4);
+      out = _mm256_blendv_epi8(out, _mm256_set1_epi32(invalid), bad);
+      const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi32(out, out), 0x08);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(outDisparity + x0_ + i),
+                       _mm256_castsi256_si128(packed));
+    }
+    for (; i < pixels_; ++i)
+      outDisparity[x0_ + i] = decideOne(i);
+  }
+
+  // decideLeft's last step for one pixel, in scalar.
+  std::int16_t decideOne(int i) const {
+    const int c0 = pxMin_.get()[i], b = pxBest_.get()[i];
+    const int below = pxBelowCost_.get()[i], above = pxAboveCost_.get()[i];
+    if (useTexture_ && pxTexture_.get()[i] < params_.textureThreshold)
+      return invalidDisparity(params_);
+    if (params_.uniquenessRatio > 0) {
+      const int limit = pxLimit_.get()[i];
+      const int expected = 1 + (below <= limit) + (above <= limit);
+      if (limit >= 0xFFFF || count_ - pxAbove_.get()[i] != expected)
+        return invalidDisparity(params_);
+    }
+    const int cm = b == 0 ? above : below;
+    const int cp = b == count_ - 1 ? below : above;
+    const int den = cm + cp - 2 * c0 + std::abs(cm - cp);
+    const int off = den > 0 ? (cm - cp) * 256 / den : 0;
+    return static_cast<std::int16_t>(((minD_ + b) * 256 + off + 8) >> 4);
+  }
+
+  // The right view's winners of one row, 16 right pixels per vector: right
+  // pixel xr meets lane k in pixel i = xr + minD + k - x0, so lane k's costs
+  // for 16 consecutive xr are 16 consecutive entries of its row. A strict <
+  // over increasing k keeps the smallest d on ties; entries outside the
+  // region's pixels are "no cost", and every xr written has a real one.
+  void decideRight(std::int16_t* outWinner) const {
+    const int xrLow = x0_ - (minD_ + count_ - 1);
+    const int xrHigh = x1_ - 1 - minD_;  // inclusive
+    const std::ptrdiff_t step = rowLen_ + 1;
+    constexpr int kBlocks = 4;  // blocks of 16 right pixels per pass, as in decideLeft
+    for (int xr0 = xrLow; xr0 <= xrHigh; xr0 += kBlocks * kLanes) {
+      __m256i best[kBlocks], d[kBlocks];
+      for (int n = 0; n < kBlocks; ++n) {
+        best[n] = _mm256_set1_epi16(kNoCost);
+        d[n] = _mm256_setzero_si256();
+      }
+      const std::int16_t* c = costs(0) + (xr0 + minD_ - x0_);
+      for (int k = 0; k < count_; ++k, c += step) {
+        const __m256i dK = load(disparityOf_.get() + k * kLanes);
+        for (int n = 0; n < kBlocks; ++n) {
+          const __m256i now = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + n * kLanes));
+          const __m256i better = _mm256_cmpgt_epi16(best[n], now);
+          best[n] = _mm256_min_epi16(best[n], now);
+          d[n] = _mm256_blendv_epi8(d[n], dK, better);
+        }
+      }
+      for (int n = 0; n < kBlocks; ++n) {
+        const int xr = xr0 + n * kLanes;
+        if (xr + kLanes <= xrHigh + 1) {
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(outWinner + xr), d[n]);
+        } else if (xr <= xrHigh) {
+          alignas(32) std::int16_t lanes[kLanes];
+          store(lanes, d[n]);
+          std::copy_n(lanes, xrHigh + 1 - xr, outWinner + xr);
+        }
+      }
+    }
+  }
+
+  const ConstImageView& left_;
+  const ConstImageView& right_;
+  const ConstImageView& texture_;
+  const StereoParams& params_;
+  const ImageView& disparity_;
+  const ImageView& winnerRight_;
+  const int width_, r_, count_, groups_, minD_;
+  const int x0_, x1_, xa_, xb_, cols_;
+  const int pixels_, padded_, edge_, rowLen_;
+  const bool useTexture_;
+  AlignedArray<std::int16_t> columnSum_;         // [g][x - xa + 1][16]; column xa - 1 stays zero
+  AlignedArray<std::uint16_t> columnTexture_;    // [x - xa + 1]; index 0 stays zero
+  AlignedArray<std::int16_t> leftIn_, leftOut_;  // [x - xa][16]: left pixels, broadcast
+  AlignedArray<std::uint8_t> reversedIn_, reversedOut_;  // right rows, reversed
+  AlignedArray<std::int16_t> costs_;                     // [k + 1][edge + i + edge], biased
+  AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
+  AlignedArray<std::int16_t> disparityOf_;               // [k][16] = minD + k
+  // Per pixel i = x - x0: texture window sum, least cost, winner lane,
+  // uniqueness limit, lanes above it, C(b - 1) and C(b + 1).
+  AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_, pxBelowCost_, pxAboveCost_;
+};
+
+}  // namespace
+
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const ImageView& disparity, const ImageView& winnerRight, RowRange rows) {
-  scalar::matchBlocks(left, right, texture, params, disparity, winnerRight, rows);
+  const int width = left.width;
+  const int r = params.blockSize / 2;
+  const std::int16_t invalid = invalidDisparity(params);
+  const auto noWinner = static_cast<std::int16_t>(params.minDisparity - 1);
+  for (int y = rows.begin; y < rows.end; ++y) {
+    std::fill_n(disparity.row<std::int16_t>(y), width, invalid);
+    std::fill_n(winnerRight.row<std::int16_t>(y), width, noWinner);
+  }
+  MatchRegion region = matchRegion(width, left.height, params);
+  region.y0 = std::max(region.y0, rows.begin);
+  region.y1 = std::min(region.y1, rows.end);
+  if (region.empty()) return;
+
+  int lLo = 255, lHi = 0, rLo = 255, rHi = 0;
+  scanRange(left, region.y0 - r, region.y1 + r, lLo, lHi);
+  scanRange(right, region.y0 - r, region.y1 + r, rLo, rHi);
+  const std::int64_t maxDiff = std::max({lHi - rLo, rHi - lLo, 0});
+  const std::int64_t side = params.blockSize;
+  // Costs must stay below 65535, the "no cost" marker.
+  if (maxDiff * side * side >= 0xFFFF) {
+    scalar::matchBlocks(left, right, texture, params, disparity, winnerRight, rows);
+    return;
+  }
+  Matcher matcher(left, right, texture, params, disparity, winnerRight, region);
+  matcher.run(region.y0, region.y1);
 }
 
 }  // namespace horopter::avx2
