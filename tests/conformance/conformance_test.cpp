@@ -341,6 +341,33 @@ std::vector<MatchCase> matchCases() {
     big.numDisparities = 16;
     cases.push_back({641, 7, big, Pattern::Stripes, 5, false});  // a single region row
   }
+  // Wide ranges (several 16-disparity groups, not powers of two), a negative
+  // range across zero, and large blocks on both sides of the 16-bit cost
+  // bound that vector code may use (raw saturated input: |diff| up to 255).
+  {
+    int k = 0;
+    for (int numD : {48, 80, 128, 256}) {
+      StereoParams p;
+      p.numDisparities = numD;
+      p.blockSize = 9;
+      p.minDisparity = (k % 2 == 0) ? 0 : -numD / 2;
+      const int shift = p.minDisparity + numD / 3;
+      cases.push_back({numD + 60 + k, 14, p, kPatterns[k % 5], shift, k % 2 == 0});
+      ++k;
+    }
+    for (int blockSize : {15, 17, 25, 33, 51}) {
+      for (Pattern pattern : {Pattern::Saturated, Pattern::Textured}) {
+        for (bool prefiltered : {false, true}) {
+          StereoParams p;
+          p.numDisparities = 16;
+          p.blockSize = blockSize;
+          p.minDisparity = -4;
+          p.textureThreshold = prefiltered ? 10 : 0;
+          cases.push_back({blockSize + 40, blockSize + 3, p, pattern, 3, prefiltered});
+        }
+      }
+    }
+  }
   return cases;
 }
 
