@@ -21,17 +21,25 @@
 //      of 16 consecutive d are 16 consecutive bytes, widened to 16 bits
 //      against the broadcast left pixel. Along x, the window cost takes in
 //      column x + r and drops column x - r - 1 (a zero column left of the
-//      first makes warming up the same step). Every 16 pixels, their 16 cost
-//      vectors are transposed in registers and stored by lane: costs[k][i].
+//      first makes warming up the same step). Groups go two at a time (32
+//      disparities): |L - R| in bytes (saturating subtractions both ways,
+//      or), entering and leaving rows interleaved by unpacking within 128-bit
+//      lanes and turned into in - out by maddubs with (1, -1), so group 2p
+//      holds d = 32p + (0..7, 16..23) and group 2p + 1 d = 32p + (8..15,
+//      24..31); an odd last group takes 16-bit lanes in natural order. Every
+//      16 pixels, their 16 cost vectors are transposed in registers and
+//      stored by lane (undoing the pair order): costs[k][i].
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
 //      cost over the lanes with a strict <, so the smallest d wins ties;
 //      the uniqueness limit (32-bit, the /100 in double, exact); the count
 //      of lanes with cost <= limit, which for a valid pixel is the winner
 //      plus those of its neighbours within the limit. The neighbours' costs
-//      C(b - 1), C(b + 1) are read per pixel (rows -1 and D hold "no cost"),
-//      then texture (window sums of 16-bit column sums), uniqueness, sub-
-//      pixel (truncated division in double, exact for these magnitudes) and
-//      rounding go 8 pixels per vector.
+//      C(b - 1), C(b + 1) are gathered 8 pixels per vector (rows -1 and D
+//      hold "no cost"; the gathers read 32-bit words, the entry and the next
+//      one, which lies within the buffer), then texture (window sums of
+//      16-bit column sums), uniqueness, sub-pixel (truncated division in
+//      double, exact for these magnitudes) and rounding go 8 pixels per
+//      vector.
 //   3. Right winners, 16 right pixels per vector: right pixel xr meets lane k
 //      at pixel xr + minD + k - x0, so lane k's costs for 16 consecutive xr
 //      are 16 consecutive entries of its row (unaligned load; edges of "no
@@ -93,6 +101,10 @@ inline __m128i loadu128(const std::uint8_t* p) {
 // 16 bytes widened to 16-bit lanes.
 inline __m256i widen(const std::uint8_t* p) {
   return _mm256_cvtepu8_epi16(loadu128(p));
+}
+// |a - b| per byte.
+inline __m256i absDiff8(__m256i a, __m256i b) {
+  return _mm256_or_si256(_mm256_subs_epu8(a, b), _mm256_subs_epu8(b, a));
 }
 inline __m256i load8x32(const int* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
@@ -221,9 +233,7 @@ class Matcher {
         pxMin_(padded_),
         pxBest_(padded_),
         pxLimit_(padded_),
-        pxAbove_(padded_),
-        pxBelowCost_(padded_),
-        pxAboveCost_(padded_) {
+        pxAbove_(padded_) {
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -262,10 +272,22 @@ class Matcher {
   void accumulateRow(int j) {
     const auto* l = left_.row<std::uint8_t>(j);
     reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn_.get());
+    const int pairs = groups_ / 2;
+    for (int x = xa_; x < xb_; ++x) {
+      const __m256i l8 = _mm256_set1_epi8(static_cast<char>(l[x]));
+      const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
+      for (int p = 0; p < pairs; ++p) {
+        const __m256i ad = absDiff8(l8, loadu(rv + p * 2 * kLanes));
+        std::int16_t* colA = column(2 * p, x);
+        std::int16_t* colB = column(2 * p + 1, x);
+        store(colA, _mm256_add_epi16(load(colA), _mm256_unpacklo_epi8(ad, _mm256_setzero_si256())));
+        store(colB, _mm256_add_epi16(load(colB), _mm256_unpackhi_epi8(ad, _mm256_setzero_si256())));
+      }
+    }
     for (int x = xa_; x < xb_; ++x) {
       const __m256i lv = _mm256_set1_epi16(l[x]);
       const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
-      for (int g = 0; g < groups_; ++g) {
+      for (int g = 2 * pairs; g < groups_; ++g) {
         std::int16_t* col = column(g, x);
         const __m256i ad = _mm256_abs_epi16(_mm256_sub_epi16(lv, widen(rv + g * kLanes)));
         store(col, _mm256_add_epi16(load(col), ad));
@@ -309,11 +331,14 @@ class Matcher {
     const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
     // Locals: the stores below could alias members as far as the compiler knows.
     const int xa = xa_, xb = xb_, pixels = pixels_, window = 2 * r_ + 1;
+    const int pairs = groups_ / 2;
+    for (int p = 0; p < pairs; ++p)
+      sweepPair<kSlide>(p, lIn, lOut);
     if constexpr (kSlide) {
-      // Left pixels broadcast once, for all groups.
+      // Left pixels broadcast once, for the last (unpaired) group.
       std::int16_t* in = leftIn_.get();
       std::int16_t* out = leftOut_.get();
-      for (int x = xa; x < xb; ++x, in += kLanes, out += kLanes) {
+      for (int x = xa; x < xb && groups_ % 2 != 0; ++x, in += kLanes, out += kLanes) {
         store(in, _mm256_set1_epi16(lIn[x]));
         store(out, _mm256_set1_epi16(lOut[x]));
       }
@@ -331,7 +356,7 @@ class Matcher {
     }
     const std::ptrdiff_t rowLen = rowLen_;
 
-    for (int g = 0; g < groups_; ++g) {
+    for (int g = 2 * pairs; g < groups_; ++g) {
       std::int16_t* col = column(g, xa_);
       const std::int16_t* drop = column(g, xa_ - 1);  // all zeros: nothing leaves while warming up
       const std::uint8_t* ri = reversedIn_.get() + reversedBase(xa_) + g * kLanes;
@@ -374,6 +399,81 @@ class Matcher {
         for (int k = 0; k < kLanes; ++k, row += rowLen)
           store(row, t[k]);
       }
+    }
+  }
+
+  // sweep for the groups 2p and 2p + 1 together: |L - R| of 32 disparities
+  // in bytes, then widened by unpacking within 128-bit lanes, so that group
+  // 2p's vectors hold d = 32p + (0..7, 16..23) and group 2p + 1's
+  // d = 32p + (8..15, 24..31); the stores after the transposes undo that.
+  template <bool kSlide>
+  void sweepPair(int p, const std::uint8_t* lIn, const std::uint8_t* lOut) {
+    const int pixels = pixels_, window = 2 * r_ + 1;
+    const std::ptrdiff_t rowLen = rowLen_;
+    std::int16_t* colA = column(2 * p, xa_);
+    std::int16_t* colB = column(2 * p + 1, xa_);
+    const std::int16_t* dropA = column(2 * p, xa_ - 1);  // all zeros while warming up
+    const std::int16_t* dropB = column(2 * p + 1, xa_ - 1);
+    const std::uint8_t* ri = reversedIn_.get() + reversedBase(xa_) + p * 2 * kLanes;
+    const std::uint8_t* ro = reversedOut_.get() + reversedBase(xa_) + p * 2 * kLanes;
+    const std::uint8_t* li = lIn + xa_;
+    const std::uint8_t* lo = lOut + xa_;
+    // (in, out) byte pairs times (1, -1): in - out in 16 bits.
+    const __m256i plusMinus = _mm256_set1_epi16(static_cast<std::int16_t>(0xFF01));
+    __m256i costA = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+    __m256i costB = costA;
+    const auto step = [&](bool moveDrop) {
+      __m256i cA = load(colA), cB = load(colB);
+      if constexpr (kSlide) {
+        const __m256i in = absDiff8(_mm256_set1_epi8(static_cast<char>(*li)), loadu(ri));
+        const __m256i out = absDiff8(_mm256_set1_epi8(static_cast<char>(*lo)), loadu(ro));
+        cA = _mm256_add_epi16(cA, _mm256_maddubs_epi16(_mm256_unpacklo_epi8(in, out), plusMinus));
+        cB = _mm256_add_epi16(cB, _mm256_maddubs_epi16(_mm256_unpackhi_epi8(in, out), plusMinus));
+        store(colA, cA);
+        store(colB, cB);
+      }
+      costA = _mm256_add_epi16(costA, _mm256_sub_epi16(cA, load(dropA)));
+      costB = _mm256_add_epi16(costB, _mm256_sub_epi16(cB, load(dropB)));
+      colA += kLanes;
+      colB += kLanes;
+      ++li;
+      ++lo;
+      --ri;
+      --ro;
+      if (moveDrop) {
+        dropA += kLanes;
+        dropB += kLanes;
+      }
+    };
+    for (int n = 0; n < window - 1; ++n)
+      step(false);
+    std::int16_t* const base = costs(p * 2 * kLanes);
+    for (int i0 = 0; i0 < pixels; i0 += kLanes) {
+      __m256i v[kLanes], w[kLanes], t[kLanes];
+      if (i0 + kLanes <= pixels) {
+#pragma GCC unroll 16
+        for (int j = 0; j < kLanes; ++j) {
+          step(true);
+          v[j] = costA;
+          w[j] = costB;
+        }
+      } else {
+        for (int j = 0; j < kLanes; ++j) {
+          if (i0 + j < pixels) {
+            step(true);
+            v[j] = costA;
+            w[j] = costB;
+          } else {
+            v[j] = w[j] = _mm256_set1_epi16(kNoCost);
+          }
+        }
+      }
+      transpose16(v, t);
+      for (int k = 0; k < kLanes; ++k)
+        store(base + (k < 8 ? k : k + 8) * rowLen + i0, t[k]);
+      transpose16(w, t);
+      for (int k = 0; k < kLanes; ++k)
+        store(base + (k < 8 ? k + 8 : k + 16) * rowLen + i0, t[k]);
     }
   }
 
@@ -450,18 +550,28 @@ class Matcher {
         }
       }
     }
-    for (int i = 0; i < pixels_; ++i) {
-      const int b = pxBest_.get()[i];
-      pxBelowCost_.get()[i] = (costs(b - 1)[i] ^ kBias) & 0xFFFF;
-      pxAboveCost_.get()[i] = (costs(b + 1)[i] ^ kBias) & 0xFFFF;
-    }
-
     const std::int16_t invalid = invalidDisparity(params_);
+    // C(b - 1) and C(b + 1), gathered as 32-bit words whose low half is the
+    // entry (the high half, the next entry, lies within costs_ and is masked).
+    const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const int* gatherBase = reinterpret_cast<const int*>(costs(-1));
+    const __m256i rowLenV = _mm256_set1_epi32(rowLen_);
+    const __m256i twoRows = _mm256_set1_epi32(2 * rowLen_);
+    const __m256i lowHalf = _mm256_set1_epi32(0xFFFF);
+    const __m256i biasV = _mm256_set1_epi32(kBias);
     int i = 0;
     for (; i + 8 <= pixels_; i += 8) {
       const __m256i c0 = load8x32(pxMin_.get() + i), b = load8x32(pxBest_.get() + i);
-      const __m256i below = load8x32(pxBelowCost_.get() + i);
-      const __m256i above = load8x32(pxAboveCost_.get() + i);
+      // Entry (k, i) lies at (k + 1) * rowLen + i from costs(-1).
+      const __m256i belowIndex = _mm256_add_epi32(
+          _mm256_mullo_epi32(b, rowLenV), _mm256_add_epi32(_mm256_set1_epi32(i), laneIndex));
+      const __m256i below = _mm256_xor_si256(
+          _mm256_and_si256(_mm256_i32gather_epi32(gatherBase, belowIndex, 2), lowHalf), biasV);
+      const __m256i above = _mm256_xor_si256(
+          _mm256_and_si256(
+              _mm256_i32gather_epi32(gatherBase, _mm256_add_epi32(belowIndex, twoRows), 2),
+              lowHalf),
+          biasV);
       __m256i bad = _mm256_setzero_si256();
       if (useTexture_) {
         bad = _mm256_cmpgt_epi32(_mm256_set1_epi32(params_.textureThreshold),
@@ -518,7 +628,8 @@ class Matcher {
   // decideLeft's last step for one pixel, in scalar.
   std::int16_t decideOne(int i) const {
     const int c0 = pxMin_.get()[i], b = pxBest_.get()[i];
-    const int below = pxBelowCost_.get()[i], above = pxAboveCost_.get()[i];
+    const int below = (costs(b - 1)[i] ^ kBias) & 0xFFFF;
+    const int above = (costs(b + 1)[i] ^ kBias) & 0xFFFF;
     if (useTexture_ && pxTexture_.get()[i] < params_.textureThreshold)
       return invalidDisparity(params_);
     if (params_.uniquenessRatio > 0) {
@@ -591,8 +702,8 @@ class Matcher {
   AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
   AlignedArray<std::int16_t> disparityOf_;               // [k][16] = minD + k
   // Per pixel i = x - x0: texture window sum, least cost, winner lane,
-  // uniqueness limit, lanes above it, C(b - 1) and C(b + 1).
-  AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_, pxBelowCost_, pxAboveCost_;
+  // uniqueness limit and lanes above it.
+  AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_;
 };
 
 }  // namespace
