@@ -38,9 +38,7 @@ bool cpuHasAvx2() {
 #endif
 }
 
-// AVX2 kernels where they exist. The speckle filter is all branches and
-// memory, nothing to vectorise: this backend runs the portable union-find
-// version.
+// AVX2 kernels where they exist.
 Backend makeAvx2() {
   Backend b;
   b.name = "avx2";
@@ -50,7 +48,7 @@ Backend makeAvx2() {
   b.kernels.prefilterXSobel = avx2::prefilterXSobel;
   b.kernels.matchBlocks = avx2::matchBlocks;
   b.kernels.leftRightCheck = avx2::leftRightCheck;
-  b.kernels.filterSpeckles = unionfind::filterSpeckles;
+  b.kernels.filterSpeckles = avx2::filterSpeckles;
   b.kernels.medianFilter = avx2::medianFilter;
   b.kernels.horopterMask = avx2::horopterMask;
   return b;

@@ -11,15 +11,10 @@ void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRigh
 void filterSpeckles(const ImageView& disparity, const StereoParams& params);
 }  // namespace horopter::scalar
 
-// AVX2 version (kernels/occlusion/lr_check_avx2.cpp): bit-exact with scalar; call only
-// where the CPU has AVX2 (the registry checks).
+// AVX2 versions (kernels/occlusion/lr_check_avx2.cpp, speckle_avx2.cpp): bit-exact
+// with scalar; call only where the CPU has AVX2 (the registry checks).
 namespace horopter::avx2 {
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
                     const StereoParams& params, RowRange rows);
-}  // namespace horopter::avx2
-
-// Union-find labelling (kernels/occlusion/speckle_unionfind.cpp): the same
-// blobs as the reference's flood fill, faster; portable C++.
-namespace horopter::unionfind {
 void filterSpeckles(const ImageView& disparity, const StereoParams& params);
-}  // namespace horopter::unionfind
+}  // namespace horopter::avx2
