@@ -3,7 +3,9 @@
 // Strategy
 //   Per output row, three passes over the region's pixels (i = x - x0, P of
 //   them), with 16-bit costs biased by 0x8000 so that signed compares and min
-//   order them as unsigned.
+//   order them as unsigned. The passes go tile by tile (128 pixels): the
+//   sweep of every group over the tile, its left decisions, then the right
+//   winners whose pixels are all swept, so the costs read are still cached.
 //
 //   Overflow bound: a window cost is at most maxDiff * blockSize^2, maxDiff
 //   bounding |L - R| from the inputs' actual value ranges (scanned over the
@@ -12,6 +14,18 @@
 //   the scalar reference. Otherwise every sum is exact: 16-bit lanes wrap
 //   modulo 2^16, but every true value they stand for fits, and 65535 is free
 //   to mark "no cost" (above every real cost, never within a limit).
+//
+//   Keys: where the bound leaves room, a cost C of lane k is kept as the key
+//   G * C + (k mod G), G = 2^s with the largest s <= 3 such that
+//   G * bound + G - 1 < 65535 (s = 3 for x-Sobel inputs with blocks up to 11,
+//   s = 0, plain costs, near the limit). The sums carry it for free: column
+//   sums add G * |L - R| and the window sums start at bias + (k mod G), so
+//   the low s bits never change. Over G consecutive lanes (an aligned group),
+//   the least key is the least cost at its smallest k, by a plain min; the
+//   winner searches take that per group and merge the groups in increasing
+//   k with a strict < on the cost (the best key with its low bits cleared),
+//   so ties still go to the smallest d. C <= limit iff key <= G * limit +
+//   G - 1. Costs are read back as key >> s; "no cost" stays 65535.
 //
 //   1. Sweep (running sums, OpenCV's StereoBM scheme), one group of 16
 //      disparities at a time (lanes d = minD + 16g + k): columnSum[g][x]
@@ -24,27 +38,26 @@
 //      first makes warming up the same step). Groups go two at a time (32
 //      disparities): |L - R| in bytes (saturating subtractions both ways,
 //      or), entering and leaving rows interleaved by unpacking within 128-bit
-//      lanes and turned into in - out by maddubs with (1, -1), so group 2p
+//      lanes and turned into G * (in - out) by maddubs with (G, -G), so group 2p
 //      holds d = 32p + (0..7, 16..23) and group 2p + 1 d = 32p + (8..15,
 //      24..31); an odd last group takes 16-bit lanes in natural order. Every
 //      16 pixels, their 16 cost vectors are transposed in registers and
 //      stored by lane (undoing the pair order): costs[k][i].
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
-//      cost over the lanes with a strict <, so the smallest d wins ties;
-//      the uniqueness limit (32-bit, the /100 in double, exact); the count
-//      of lanes with cost <= limit, which for a valid pixel is the winner
-//      plus those of its neighbours within the limit. The neighbours' costs
-//      C(b - 1), C(b + 1) are gathered 8 pixels per vector (rows -1 and D
-//      hold "no cost"; the gathers read 32-bit words, the entry and the next
-//      one, which lies within the buffer), then texture (window sums of
+//      key over the lanes as above, so the smallest d wins ties; the
+//      uniqueness limit (32-bit, the /100 as a multiplication in double,
+//      exact); the count of lanes with cost <= limit, which for a valid
+//      pixel is the winner plus those of its neighbours within the limit.
+//      The neighbours' costs C(b - 1), C(b + 1) are read by scalar loads
+//      (rows -1 and D hold "no cost"), then texture (window sums of
 //      16-bit column sums), uniqueness, sub-pixel (truncated division in
 //      double, exact for these magnitudes) and rounding go 8 pixels per
 //      vector.
 //   3. Right winners, 16 right pixels per vector: right pixel xr meets lane k
 //      at pixel xr + minD + k - x0, so lane k's costs for 16 consecutive xr
 //      are 16 consecutive entries of its row (unaligned load; edges of "no
-//      cost" around each row). A strict < over increasing k keeps the
-//      smallest d on ties, as the reference does.
+//      cost" around each row). The least key over increasing k, as above,
+//      keeps the smallest d on ties, as the reference does.
 //
 //   Tails: the last block of pixels is padded with "no cost" lanes; image
 //   rows are read only within [0, width), and outputs are written only in the
@@ -57,6 +70,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
 
 #include "sad/sad.hpp"
 
@@ -180,25 +194,72 @@ void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
   }
 }
 
-// Eight int32 lanes divided by 100, truncated (0 <= n < 2^31): in double, the
-// correctly rounded quotient cannot cross an integer.
+// Eight int32 lanes divided by 100, truncated (0 <= n < 2^31), without a
+// division: (n + 0.5) / 100 lies at least 0.005 from an integer, and
+// (n + 0.5) * 0.01 in double is within 2^-26 of it, so truncating it gives
+// floor(n / 100).
 inline __m256i divideBy100(__m256i n) {
-  const __m256d hundred = _mm256_set1_pd(100.0);
-  const __m128i lo =
-      _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(n)), hundred));
-  const __m128i hi = _mm256_cvttpd_epi32(
-      _mm256_div_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(n, 1)), hundred));
+  const __m256d half = _mm256_set1_pd(0.5), hundredth = _mm256_set1_pd(0.01);
+  const __m128i lo = _mm256_cvttpd_epi32(
+      _mm256_mul_pd(_mm256_add_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(n)), half), hundredth));
+  const __m128i hi = _mm256_cvttpd_epi32(_mm256_mul_pd(
+      _mm256_add_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(n, 1)), half), hundredth));
   return _mm256_set_m128i(hi, lo);
+}
+
+// The least key over lanes k = 0 .. count - 1 (lane k's 16 entries at
+// c + k * step), for kBlocks blocks of 16 consecutive entries, and
+// index[k0] (a vector) of the group of G = 2^kShift lanes k0 .. k0 + G - 1
+// that holds it: within a group the least key is the least (cost, k mod G),
+// i.e. the least cost at its smallest k; across groups a later one wins only
+// with a strictly smaller cost (its key below the best key's low bits
+// cleared), so ties go to the smallest k. The caller adds the key's low
+// bits (k mod G) to the index.
+template <int kShift, int kBlocks>
+[[gnu::always_inline]] inline void leastKeys(const std::int16_t* c, std::ptrdiff_t step, int count,
+                                             const std::int16_t* indexOf, __m256i* best,
+                                             __m256i* index) {
+  constexpr int kGroup = 1 << kShift;
+  const auto groupMin = [&](const std::int16_t* p) {
+    __m256i m = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    for (int j = 1; j < kGroup; ++j)
+      m = _mm256_min_epi16(m, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + j * step)));
+    return m;
+  };
+  for (int n = 0; n < kBlocks; ++n) {
+    best[n] = groupMin(c + n * kLanes);
+    index[n] = load(indexOf);
+  }
+  const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~(kGroup - 1)));
+  for (int k0 = kGroup; k0 < count; k0 += kGroup) {
+    c += kGroup * step;
+    const __m256i indexK = load(indexOf + k0 * kLanes);
+    for (int n = 0; n < kBlocks; ++n) {
+      const __m256i now = groupMin(c + n * kLanes);
+      __m256i better;
+      if constexpr (kGroup == 1) {
+        better = _mm256_cmpgt_epi16(best[n], now);
+        best[n] = _mm256_min_epi16(best[n], now);
+      } else {
+        better = _mm256_cmpgt_epi16(_mm256_and_si256(best[n], high), now);
+        best[n] = _mm256_blendv_epi8(best[n], now, better);
+      }
+      index[n] = _mm256_blendv_epi8(index[n], indexK, better);
+    }
+  }
 }
 
 class Matcher {
   // decideLeft and decideRight take 4 blocks of 16 pixels per pass.
   static constexpr int kChunk = 4 * kLanes;
+  // Pixels per tile of a row pass (a multiple of kChunk).
+  static constexpr int kTile = 2 * kChunk;
+  static constexpr int kMaxGroups = 1024 / kLanes;  // numDisparities <= 1024
 
  public:
   Matcher(const ConstImageView& left, const ConstImageView& right, const ConstImageView& texture,
           const StereoParams& params, const ImageView& disparity, const ImageView& winnerRight,
-          const MatchRegion& region)
+          const MatchRegion& region, int keyShift)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -220,6 +281,11 @@ class Matcher {
         edge_(count_ + kChunk),
         rowLen_(padded_ + 2 * edge_),
         useTexture_(params.textureThreshold > 0),
+        keyShift_(keyShift),
+        keyInit_(_mm256_add_epi16(
+            _mm256_set1_epi16(static_cast<std::int16_t>(kBias)),
+            _mm256_and_si256(_mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7),
+                             _mm256_set1_epi16(static_cast<std::int16_t>((1 << keyShift) - 1))))),
         columnSum_(static_cast<std::size_t>(groups_) * cols_ * kLanes),
         columnTexture_(cols_),
         leftIn_(static_cast<std::size_t>(cols_) * kLanes),
@@ -233,7 +299,9 @@ class Matcher {
         pxMin_(padded_),
         pxBest_(padded_),
         pxLimit_(padded_),
-        pxAbove_(padded_) {
+        pxAbove_(padded_),
+        pxBelow_(padded_),
+        pxNext_(padded_) {
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -273,6 +341,7 @@ class Matcher {
     const auto* l = left_.row<std::uint8_t>(j);
     reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn_.get());
     const int pairs = groups_ / 2;
+    const __m128i shift = _mm_cvtsi32_si128(keyShift_);
     for (int x = xa_; x < xb_; ++x) {
       const __m256i l8 = _mm256_set1_epi8(static_cast<char>(l[x]));
       const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
@@ -280,8 +349,12 @@ class Matcher {
         const __m256i ad = absDiff8(l8, loadu(rv + p * 2 * kLanes));
         std::int16_t* colA = column(2 * p, x);
         std::int16_t* colB = column(2 * p + 1, x);
-        store(colA, _mm256_add_epi16(load(colA), _mm256_unpacklo_epi8(ad, _mm256_setzero_si256())));
-        store(colB, _mm256_add_epi16(load(colB), _mm256_unpackhi_epi8(ad, _mm256_setzero_si256())));
+        const __m256i adA =
+            _mm256_sll_epi16(_mm256_unpacklo_epi8(ad, _mm256_setzero_si256()), shift);
+        const __m256i adB =
+            _mm256_sll_epi16(_mm256_unpackhi_epi8(ad, _mm256_setzero_si256()), shift);
+        store(colA, _mm256_add_epi16(load(colA), adA));
+        store(colB, _mm256_add_epi16(load(colB), adB));
       }
     }
     for (int x = xa_; x < xb_; ++x) {
@@ -290,7 +363,7 @@ class Matcher {
       for (int g = 2 * pairs; g < groups_; ++g) {
         std::int16_t* col = column(g, x);
         const __m256i ad = _mm256_abs_epi16(_mm256_sub_epi16(lv, widen(rv + g * kLanes)));
-        store(col, _mm256_add_epi16(load(col), ad));
+        store(col, _mm256_add_epi16(load(col), _mm256_sll_epi16(ad, shift)));
       }
     }
     if (useTexture_) {
@@ -314,114 +387,200 @@ class Matcher {
       *columnTexture(x) = static_cast<std::uint16_t>(*columnTexture(x) + tIn[x] - tOut[x]);
   }
 
+  // Sweep state of one group pair (or of the last, unpaired group): where
+  // the next pixel's column sums, dropped columns and input bytes lie, and
+  // the running window costs.
+  struct SweepState {
+    std::int16_t* colA;
+    std::int16_t* colB;
+    const std::int16_t* dropA;
+    const std::int16_t* dropB;
+    const std::uint8_t* ri;
+    const std::uint8_t* ro;
+    const std::uint8_t* li;  // left bytes (pairs) or broadcast lanes (last group)
+    const std::uint8_t* lo;
+    __m256i costA, costB;
+  };
+
+  // One row, tile by tile (kTile pixels): the sweep of every group over the
+  // tile, then its left decisions, then the right winners whose costs are
+  // all in; the tile's costs are still in cache when the decisions read them.
   template <bool kSlide>
   void rowPass(int y) {
-    sweep<kSlide>(y);
-    decideLeft(disparity_.row<std::int16_t>(y));
-    decideRight(winnerRight_.row<std::int16_t>(y));
-  }
-
-  // The row's window costs into costs_, one group of 16 disparities at a
-  // time: along x, each column slides down a row (kSlide) and the window
-  // cost takes it in and drops column x - 2r - 1; every 16 pixels, their 16
-  // cost vectors are transposed in registers and stored by lane.
-  template <bool kSlide>
-  void sweep(int y) {
     const auto* lIn = left_.row<std::uint8_t>(kSlide ? y + r_ : y);
     const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
-    // Locals: the stores below could alias members as far as the compiler knows.
-    const int xa = xa_, xb = xb_, pixels = pixels_, window = 2 * r_ + 1;
     const int pairs = groups_ / 2;
-    for (int p = 0; p < pairs; ++p)
-      sweepPair<kSlide>(p, lIn, lOut);
+    const bool odd = groups_ % 2 != 0;
     if constexpr (kSlide) {
       // Left pixels broadcast once, for the last (unpaired) group.
       std::int16_t* in = leftIn_.get();
       std::int16_t* out = leftOut_.get();
-      for (int x = xa; x < xb && groups_ % 2 != 0; ++x, in += kLanes, out += kLanes) {
+      for (int x = xa_; x < xb_ && odd; ++x, in += kLanes, out += kLanes) {
         store(in, _mm256_set1_epi16(lIn[x]));
         store(out, _mm256_set1_epi16(lOut[x]));
       }
     }
     if (useTexture_) {
-      const std::uint16_t* t = columnTexture(xa);  // column xa - 1 (t[-1]) is zero
+      const std::uint16_t* t = columnTexture(xa_);  // column xa - 1 (t[-1]) is zero
       int* sums = pxTexture_.get();
+      const int window = 2 * r_ + 1;
       int sum = 0;
       for (int n = 0; n < window - 1; ++n)
         sum += t[n];
-      for (int i = 0; i < pixels; ++i) {
+      for (int i = 0; i < pixels_; ++i) {
         sum += t[i + window - 1] - t[i - 1];
         sums[i] = sum;
       }
     }
-    const std::ptrdiff_t rowLen = rowLen_;
 
-    for (int g = 2 * pairs; g < groups_; ++g) {
-      std::int16_t* col = column(g, xa_);
-      const std::int16_t* drop = column(g, xa_ - 1);  // all zeros: nothing leaves while warming up
-      const std::uint8_t* ri = reversedIn_.get() + reversedBase(xa_) + g * kLanes;
-      const std::uint8_t* ro = reversedOut_.get() + reversedBase(xa_) + g * kLanes;
-      const std::int16_t* li = leftIn_.get();
-      const std::int16_t* lo = leftOut_.get();
-      __m256i cost = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
-      // One column: slide it, add it, drop `drop`; on to the next column.
-      const auto step = [&](bool moveDrop) {
-        __m256i c = load(col);
-        if constexpr (kSlide) {
-          const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(load(li), widen(ri)));
-          const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(load(lo), widen(ro)));
-          c = _mm256_add_epi16(c, _mm256_sub_epi16(in, out));
-          store(col, c);
+    SweepState state[kMaxGroups / 2 + 1];
+    for (int p = 0; p < pairs; ++p) {
+      SweepState& s = state[p];
+      s.colA = column(2 * p, xa_);
+      s.colB = column(2 * p + 1, xa_);
+      s.dropA = column(2 * p, xa_ - 1);  // all zeros while warming up
+      s.dropB = column(2 * p + 1, xa_ - 1);
+      s.ri = reversedIn_.get() + reversedBase(xa_) + p * 2 * kLanes;
+      s.ro = reversedOut_.get() + reversedBase(xa_) + p * 2 * kLanes;
+      s.li = lIn + xa_;
+      s.lo = lOut + xa_;
+      s.costA = s.costB = keyInit_;
+    }
+    if (odd) {
+      const int g = groups_ - 1;
+      SweepState& s = state[pairs];
+      s.colA = column(g, xa_);
+      s.dropA = column(g, xa_ - 1);
+      s.ri = reversedIn_.get() + reversedBase(xa_) + g * kLanes;
+      s.ro = reversedOut_.get() + reversedBase(xa_) + g * kLanes;
+      s.li = reinterpret_cast<const std::uint8_t*>(leftIn_.get());
+      s.lo = reinterpret_cast<const std::uint8_t*>(leftOut_.get());
+      s.costA = keyInit_;
+    }
+
+    std::int16_t* outDisparity = disparity_.row<std::int16_t>(y);
+    std::int16_t* outWinner = winnerRight_.row<std::int16_t>(y);
+    const int xrLow = x0_ - (minD_ + count_ - 1);
+    const int xrHigh = x1_ - 1 - minD_;  // inclusive
+    int xr0 = xrLow;
+    for (int i0 = 0; i0 < pixels_; i0 += kTile) {
+      const int i1 = std::min(i0 + kTile, pixels_);
+      for (int p = 0; p < pairs; ++p)
+        sweepPair<kSlide>(p, state[p], i0, i1);
+      if (odd) sweepLast<kSlide>(state[pairs], i0, i1);
+      const auto decide = [&](auto shift) {
+        constexpr int kShift = decltype(shift)::value;
+        decideLeft<kShift>(outDisparity, i0, i1);
+        // Right pixel xr reads pixels up to xr + maxD - x0: those of the
+        // blocks below are all swept (past the last pixel, "no cost").
+        for (; xr0 <= xrHigh; xr0 += kChunk) {
+          if (i1 < pixels_ && xr0 + kChunk - 1 + minD_ + count_ - 1 - x0_ >= i1) break;
+          decideRight<kShift>(outWinner, xr0, xrHigh);
         }
-        cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop)));
-        col += kLanes;
-        li += kLanes;
-        lo += kLanes;
-        --ri;
-        --ro;
-        if (moveDrop) drop += kLanes;
-        return cost;
       };
-      for (int n = 0; n < window - 1; ++n)
-        step(false);
-      for (int i0 = 0; i0 < pixels; i0 += kLanes) {
-        __m256i v[kLanes], t[kLanes];
-        if (i0 + kLanes <= pixels) {
-#pragma GCC unroll 16
-          for (int j = 0; j < kLanes; ++j)
-            v[j] = step(true);
-        } else {
-          for (int j = 0; j < kLanes; ++j)
-            v[j] = i0 + j < pixels ? step(true) : _mm256_set1_epi16(kNoCost);
-        }
-        transpose16(v, t);
-        std::int16_t* row = costs(g * kLanes) + i0;
-        for (int k = 0; k < kLanes; ++k, row += rowLen)
-          store(row, t[k]);
+      switch (keyShift_) {
+        case 0:
+          decide(std::integral_constant<int, 0>{});
+          break;
+        case 1:
+          decide(std::integral_constant<int, 1>{});
+          break;
+        case 2:
+          decide(std::integral_constant<int, 2>{});
+          break;
+        default:
+          decide(std::integral_constant<int, 3>{});
+          break;
       }
     }
   }
 
-  // sweep for the groups 2p and 2p + 1 together: |L - R| of 32 disparities
-  // in bytes, then widened by unpacking within 128-bit lanes, so that group
-  // 2p's vectors hold d = 32p + (0..7, 16..23) and group 2p + 1's
-  // d = 32p + (8..15, 24..31); the stores after the transposes undo that.
+  // The last, unpaired group's sweep over pixels [i0, i1) (from the row's
+  // first column when i0 = 0): along x, each column slides down a row
+  // (kSlide) and the window cost takes it in and drops column x - 2r - 1;
+  // every 16 pixels, their 16 cost vectors are transposed in registers and
+  // stored by lane.
   template <bool kSlide>
-  void sweepPair(int p, const std::uint8_t* lIn, const std::uint8_t* lOut) {
+  void sweepLast(SweepState& s, int i0, int i1) {
+    const int g = groups_ - 1, pixels = pixels_, window = 2 * r_ + 1;
+    const std::ptrdiff_t rowLen = rowLen_;
+    std::int16_t* col = s.colA;
+    const std::int16_t* drop = s.dropA;
+    const std::uint8_t* ri = s.ri;
+    const std::uint8_t* ro = s.ro;
+    const auto* li = reinterpret_cast<const std::int16_t*>(s.li);
+    const auto* lo = reinterpret_cast<const std::int16_t*>(s.lo);
+    __m256i cost = s.costA;
+    const __m128i shift = _mm_cvtsi32_si128(keyShift_);
+    // One column: slide it, add it, drop `drop`; on to the next column.
+    const auto step = [&](bool moveDrop) {
+      __m256i c = load(col);
+      if constexpr (kSlide) {
+        const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(load(li), widen(ri)));
+        const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(load(lo), widen(ro)));
+        c = _mm256_add_epi16(c, _mm256_sll_epi16(_mm256_sub_epi16(in, out), shift));
+        store(col, c);
+      }
+      cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop)));
+      col += kLanes;
+      li += kLanes;
+      lo += kLanes;
+      --ri;
+      --ro;
+      if (moveDrop) drop += kLanes;
+      return cost;
+    };
+    if (i0 == 0) {
+      for (int n = 0; n < window - 1; ++n)
+        step(false);
+    }
+    for (int b = i0; b < i1; b += kLanes) {
+      __m256i v[kLanes], t[kLanes];
+      if (b + kLanes <= pixels) {
+#pragma GCC unroll 16
+        for (int j = 0; j < kLanes; ++j)
+          v[j] = step(true);
+      } else {
+        for (int j = 0; j < kLanes; ++j)
+          v[j] = b + j < pixels ? step(true) : _mm256_set1_epi16(kNoCost);
+      }
+      transpose16(v, t);
+      std::int16_t* row = costs(g * kLanes) + b;
+      for (int k = 0; k < kLanes; ++k, row += rowLen)
+        store(row, t[k]);
+    }
+    s.colA = col;
+    s.dropA = drop;
+    s.ri = ri;
+    s.ro = ro;
+    s.li = reinterpret_cast<const std::uint8_t*>(li);
+    s.lo = reinterpret_cast<const std::uint8_t*>(lo);
+    s.costA = cost;
+  }
+
+  // The sweep of groups 2p and 2p + 1 together over pixels [i0, i1): |L - R|
+  // of 32 disparities in bytes, then widened by unpacking within 128-bit
+  // lanes, so that group 2p's vectors hold d = 32p + (0..7, 16..23) and
+  // group 2p + 1's d = 32p + (8..15, 24..31); the stores after the
+  // transposes undo that.
+  template <bool kSlide>
+  void sweepPair(int p, SweepState& s, int i0, int i1) {
     const int pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
-    std::int16_t* colA = column(2 * p, xa_);
-    std::int16_t* colB = column(2 * p + 1, xa_);
-    const std::int16_t* dropA = column(2 * p, xa_ - 1);  // all zeros while warming up
-    const std::int16_t* dropB = column(2 * p + 1, xa_ - 1);
-    const std::uint8_t* ri = reversedIn_.get() + reversedBase(xa_) + p * 2 * kLanes;
-    const std::uint8_t* ro = reversedOut_.get() + reversedBase(xa_) + p * 2 * kLanes;
-    const std::uint8_t* li = lIn + xa_;
-    const std::uint8_t* lo = lOut + xa_;
-    // (in, out) byte pairs times (1, -1): in - out in 16 bits.
-    const __m256i plusMinus = _mm256_set1_epi16(static_cast<std::int16_t>(0xFF01));
-    __m256i costA = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
-    __m256i costB = costA;
+    std::int16_t* colA = s.colA;
+    std::int16_t* colB = s.colB;
+    const std::int16_t* dropA = s.dropA;
+    const std::int16_t* dropB = s.dropB;
+    const std::uint8_t* ri = s.ri;
+    const std::uint8_t* ro = s.ro;
+    const std::uint8_t* li = s.li;
+    const std::uint8_t* lo = s.lo;
+    // (in, out) byte pairs times (G, -G): G * (in - out) in 16 bits.
+    const int unit = 1 << keyShift_;
+    const __m256i plusMinus =
+        _mm256_set1_epi16(static_cast<std::int16_t>((256 - unit) << 8 | unit));
+    __m256i costA = s.costA;
+    __m256i costB = s.costB;
     const auto step = [&](bool moveDrop) {
       __m256i cA = load(colA), cB = load(colB);
       if constexpr (kSlide) {
@@ -445,12 +604,14 @@ class Matcher {
         dropB += kLanes;
       }
     };
-    for (int n = 0; n < window - 1; ++n)
-      step(false);
+    if (i0 == 0) {
+      for (int n = 0; n < window - 1; ++n)
+        step(false);
+    }
     std::int16_t* const base = costs(p * 2 * kLanes);
-    for (int i0 = 0; i0 < pixels; i0 += kLanes) {
+    for (int b = i0; b < i1; b += kLanes) {
       __m256i v[kLanes], w[kLanes], t[kLanes];
-      if (i0 + kLanes <= pixels) {
+      if (b + kLanes <= pixels) {
 #pragma GCC unroll 16
         for (int j = 0; j < kLanes; ++j) {
           step(true);
@@ -459,7 +620,7 @@ class Matcher {
         }
       } else {
         for (int j = 0; j < kLanes; ++j) {
-          if (i0 + j < pixels) {
+          if (b + j < pixels) {
             step(true);
             v[j] = costA;
             w[j] = costB;
@@ -470,54 +631,57 @@ class Matcher {
       }
       transpose16(v, t);
       for (int k = 0; k < kLanes; ++k)
-        store(base + (k < 8 ? k : k + 8) * rowLen + i0, t[k]);
+        store(base + (k < 8 ? k : k + 8) * rowLen + b, t[k]);
       transpose16(w, t);
       for (int k = 0; k < kLanes; ++k)
-        store(base + (k < 8 ? k + 8 : k + 16) * rowLen + i0, t[k]);
+        store(base + (k < 8 ? k + 8 : k + 16) * rowLen + b, t[k]);
     }
+    s.colA = colA;
+    s.colB = colB;
+    s.dropA = dropA;
+    s.dropB = dropB;
+    s.ri = ri;
+    s.ro = ro;
+    s.li = li;
+    s.lo = lo;
+    s.costA = costA;
+    s.costB = costB;
   }
 
   // The left view's decisions of one row, 16 pixels per vector:
-  //   winner: the least cost over the lanes, strict < so the first (smallest
-  //   d) wins ties; uniqueness: the pixel is valid iff every lane with cost
+  //   winner: the least key over the lanes (leastKeys), so the first
+  //   (smallest d) wins ties; uniqueness: the pixel is valid iff every lane with cost
   //   <= limit is the winner or next to it, i.e. iff the count of such lanes
   //   equals 1 + [C(b - 1) <= limit] + [C(b + 1) <= limit] (rows -1 and count
   //   hold "no cost", above any limit). The neighbours' costs are read per
-  //   pixel, then sub-pixel and rounding go 8 pixels at a time.
-  void decideLeft(std::int16_t* outDisparity) const {
+  //   pixel, then sub-pixel and rounding go 8 pixels at a time. Pixels
+  //   [from, to): from is a multiple of 64, to one or the last pixel.
+  template <int kShift>
+  void decideLeft(std::int16_t* outDisparity, int from, int to) const {
     const int ratio = params_.uniquenessRatio;
+    const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
+    const __m256i lowBits32 = _mm256_set1_epi32((1 << kShift) - 1);
     const std::ptrdiff_t rowLen = rowLen_;
     // kBlocks blocks of 16 pixels per pass over the lanes: independent
     // chains, and whole cache lines of each lane's row.
     constexpr int kBlocks = 4;
-    for (int i0 = 0; i0 < pixels_; i0 += kBlocks * kLanes) {
+    for (int i0 = from; i0 < to; i0 += kBlocks * kLanes) {
       __m256i best[kBlocks], lane[kBlocks];
-      for (int n = 0; n < kBlocks; ++n) {
-        best[n] = _mm256_set1_epi16(kNoCost);
-        lane[n] = _mm256_setzero_si256();
-      }
       const std::int16_t* c = costs(0) + i0;
-      for (int k = 0; k < count_; ++k, c += rowLen) {
-        const __m256i laneK = load(laneOf_.get() + k * kLanes);
-        for (int n = 0; n < kBlocks; ++n) {
-          const __m256i now = load(c + n * kLanes);
-          const __m256i better = _mm256_cmpgt_epi16(best[n], now);
-          best[n] = _mm256_min_epi16(best[n], now);
-          lane[n] = _mm256_blendv_epi8(lane[n], laneK, better);
-        }
-      }
+      leastKeys<kShift, kBlocks>(c, rowLen, count_, laneOf_.get(), best, lane);
       __m256i limit[kBlocks];
       for (int n = 0; n < kBlocks; ++n) {
         const int i = i0 + n * kLanes;
-        const __m256i least =
+        const __m256i key =
             _mm256_xor_si256(best[n], _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
+        const __m256i least = _mm256_srli_epi16(key, kShift);
+        const __m256i b = _mm256_add_epi16(lane[n], _mm256_and_si256(key, lowBits));
         const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
         const __m256i minHi = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(least, 1));
         store8x32(pxMin_.get() + i, minLo);
         store8x32(pxMin_.get() + i + 8, minHi);
-        store8x32(pxBest_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(lane[n])));
-        store8x32(pxBest_.get() + i + 8,
-                  _mm256_cvtepi16_epi32(_mm256_extracti128_si256(lane[n], 1)));
+        store8x32(pxBest_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(b)));
+        store8x32(pxBest_.get() + i + 8, _mm256_cvtepi16_epi32(_mm256_extracti128_si256(b, 1)));
         if (ratio > 0) {
           const __m256i ratioV = _mm256_set1_epi32(ratio);
           const __m256i limitLo =
@@ -526,10 +690,16 @@ class Matcher {
               _mm256_add_epi32(minHi, divideBy100(_mm256_mullo_epi32(minHi, ratioV)));
           store8x32(pxLimit_.get() + i, limitLo);
           store8x32(pxLimit_.get() + i + 8, limitHi);
-          // min(limit, 65535), biased, back in pixel order after packus.
-          limit[n] = _mm256_xor_si256(
-              _mm256_permute4x64_epi64(_mm256_packus_epi32(limitLo, limitHi), 0xD8),
-              _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
+          // The largest key of a cost <= limit, G * limit + G - 1, at most
+          // 65535 (packus saturates), biased, back in pixel order.
+          const __m256i cap = _mm256_set1_epi32(0xFFFF);
+          const __m256i keyLo = _mm256_add_epi32(
+              _mm256_slli_epi32(_mm256_min_epi32(limitLo, cap), kShift), lowBits32);
+          const __m256i keyHi = _mm256_add_epi32(
+              _mm256_slli_epi32(_mm256_min_epi32(limitHi, cap), kShift), lowBits32);
+          limit[n] =
+              _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(keyLo, keyHi), 0xD8),
+                               _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
         }
       }
       if (ratio > 0) {
@@ -551,27 +721,23 @@ class Matcher {
       }
     }
     const std::int16_t invalid = invalidDisparity(params_);
-    // C(b - 1) and C(b + 1), gathered as 32-bit words whose low half is the
-    // entry (the high half, the next entry, lies within costs_ and is masked).
-    const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    const int* gatherBase = reinterpret_cast<const int*>(costs(-1));
-    const __m256i rowLenV = _mm256_set1_epi32(rowLen_);
-    const __m256i twoRows = _mm256_set1_epi32(2 * rowLen_);
-    const __m256i lowHalf = _mm256_set1_epi32(0xFFFF);
-    const __m256i biasV = _mm256_set1_epi32(kBias);
-    int i = 0;
-    for (; i + 8 <= pixels_; i += 8) {
+    // C(b - 1) and C(b + 1) by scalar loads (rows -1 and count hold "no
+    // cost"): integer ports, while the vector ones are the busy ones.
+    {
+      const int* best = pxBest_.get();
+      int* below = pxBelow_.get();
+      int* above = pxNext_.get();
+      const std::int16_t* base = costs(0);
+      for (int j = from; j < to; ++j) {
+        const std::int16_t* entry = base + static_cast<std::ptrdiff_t>(best[j]) * rowLen + j;
+        below[j] = costOfKey(entry[-rowLen], kShift);
+        above[j] = costOfKey(entry[rowLen], kShift);
+      }
+    }
+    int i = from;
+    for (; i + 8 <= to; i += 8) {
       const __m256i c0 = load8x32(pxMin_.get() + i), b = load8x32(pxBest_.get() + i);
-      // Entry (k, i) lies at (k + 1) * rowLen + i from costs(-1).
-      const __m256i belowIndex = _mm256_add_epi32(
-          _mm256_mullo_epi32(b, rowLenV), _mm256_add_epi32(_mm256_set1_epi32(i), laneIndex));
-      const __m256i below = _mm256_xor_si256(
-          _mm256_and_si256(_mm256_i32gather_epi32(gatherBase, belowIndex, 2), lowHalf), biasV);
-      const __m256i above = _mm256_xor_si256(
-          _mm256_and_si256(
-              _mm256_i32gather_epi32(gatherBase, _mm256_add_epi32(belowIndex, twoRows), 2),
-              lowHalf),
-          biasV);
+      const __m256i below = load8x32(pxBelow_.get() + i), above = load8x32(pxNext_.get() + i);
       __m256i bad = _mm256_setzero_si256();
       if (useTexture_) {
         bad = _mm256_cmpgt_epi32(_mm256_set1_epi32(params_.textureThreshold),
@@ -621,15 +787,20 @@ class Matcher {
       _mm_storeu_si128(reinterpret_cast<__m128i*>(outDisparity + x0_ + i),
                        _mm256_castsi256_si128(packed));
     }
-    for (; i < pixels_; ++i)
+    for (; i < to; ++i)
       outDisparity[x0_ + i] = decideOne(i);
+  }
+
+  // The cost of a stored key; "no cost" stays 65535.
+  static int costOfKey(std::int16_t stored, int shift) {
+    const int key = static_cast<std::uint16_t>(stored ^ kBias);
+    return key == 0xFFFF ? key : key >> shift;
   }
 
   // decideLeft's last step for one pixel, in scalar.
   std::int16_t decideOne(int i) const {
     const int c0 = pxMin_.get()[i], b = pxBest_.get()[i];
-    const int below = (costs(b - 1)[i] ^ kBias) & 0xFFFF;
-    const int above = (costs(b + 1)[i] ^ kBias) & 0xFFFF;
+    const int below = pxBelow_.get()[i], above = pxNext_.get()[i];
     if (useTexture_ && pxTexture_.get()[i] < params_.textureThreshold)
       return invalidDisparity(params_);
     if (params_.uniquenessRatio > 0) {
@@ -647,39 +818,26 @@ class Matcher {
 
   // The right view's winners of one row, 16 right pixels per vector: right
   // pixel xr meets lane k in pixel i = xr + minD + k - x0, so lane k's costs
-  // for 16 consecutive xr are 16 consecutive entries of its row. A strict <
-  // over increasing k keeps the smallest d on ties; entries outside the
+  // for 16 consecutive xr are 16 consecutive entries of its row. The least
+  // key (leastKeys) keeps the smallest d on ties; entries outside the
   // region's pixels are "no cost", and every xr written has a real one.
-  void decideRight(std::int16_t* outWinner) const {
-    const int xrLow = x0_ - (minD_ + count_ - 1);
-    const int xrHigh = x1_ - 1 - minD_;  // inclusive
-    const std::ptrdiff_t step = rowLen_ + 1;
-    constexpr int kBlocks = 4;  // blocks of 16 right pixels per pass, as in decideLeft
-    for (int xr0 = xrLow; xr0 <= xrHigh; xr0 += kBlocks * kLanes) {
-      __m256i best[kBlocks], d[kBlocks];
-      for (int n = 0; n < kBlocks; ++n) {
-        best[n] = _mm256_set1_epi16(kNoCost);
-        d[n] = _mm256_setzero_si256();
-      }
-      const std::int16_t* c = costs(0) + (xr0 + minD_ - x0_);
-      for (int k = 0; k < count_; ++k, c += step) {
-        const __m256i dK = load(disparityOf_.get() + k * kLanes);
-        for (int n = 0; n < kBlocks; ++n) {
-          const __m256i now = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + n * kLanes));
-          const __m256i better = _mm256_cmpgt_epi16(best[n], now);
-          best[n] = _mm256_min_epi16(best[n], now);
-          d[n] = _mm256_blendv_epi8(d[n], dK, better);
-        }
-      }
-      for (int n = 0; n < kBlocks; ++n) {
-        const int xr = xr0 + n * kLanes;
-        if (xr + kLanes <= xrHigh + 1) {
-          _mm256_storeu_si256(reinterpret_cast<__m256i*>(outWinner + xr), d[n]);
-        } else if (xr <= xrHigh) {
-          alignas(32) std::int16_t lanes[kLanes];
-          store(lanes, d[n]);
-          std::copy_n(lanes, xrHigh + 1 - xr, outWinner + xr);
-        }
+  template <int kShift>
+  void decideRight(std::int16_t* outWinner, int xr0, int xrHigh) const {
+    constexpr int kBlocks = kChunk / kLanes;  // blocks of 16 right pixels per pass
+    __m256i best[kBlocks], d[kBlocks];
+    leastKeys<kShift, kBlocks>(costs(0) + (xr0 + minD_ - x0_), rowLen_ + 1, count_,
+                               disparityOf_.get(), best, d);
+    const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
+    for (int n = 0; n < kBlocks; ++n)
+      d[n] = _mm256_add_epi16(d[n], _mm256_and_si256(best[n], lowBits));
+    for (int n = 0; n < kBlocks; ++n) {
+      const int xr = xr0 + n * kLanes;
+      if (xr + kLanes <= xrHigh + 1) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(outWinner + xr), d[n]);
+      } else if (xr <= xrHigh) {
+        alignas(32) std::int16_t lanes[kLanes];
+        store(lanes, d[n]);
+        std::copy_n(lanes, xrHigh + 1 - xr, outWinner + xr);
       }
     }
   }
@@ -694,6 +852,10 @@ class Matcher {
   const int x0_, x1_, xa_, xb_, cols_;
   const int pixels_, padded_, edge_, rowLen_;
   const bool useTexture_;
+  // Costs are kept as keys G * C + (k mod G), G = 2^keyShift (see Strategy);
+  // keyInit_ is the running sums' start: the bias and each lane's k mod G.
+  const int keyShift_;
+  const __m256i keyInit_;
   AlignedArray<std::int16_t> columnSum_;         // [g][x - xa + 1][16]; column xa - 1 stays zero
   AlignedArray<std::uint16_t> columnTexture_;    // [x - xa + 1]; index 0 stays zero
   AlignedArray<std::int16_t> leftIn_, leftOut_;  // [x - xa][16]: left pixels, broadcast
@@ -704,6 +866,8 @@ class Matcher {
   // Per pixel i = x - x0: texture window sum, least cost, winner lane,
   // uniqueness limit and lanes above it.
   AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_;
+  // Per pixel: C(b - 1) and C(b + 1), "no cost" (65535) past the range's ends.
+  AlignedArray<int> pxBelow_, pxNext_;
 };
 
 }  // namespace
@@ -734,7 +898,11 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     scalar::matchBlocks(left, right, texture, params, disparity, winnerRight, rows);
     return;
   }
-  Matcher matcher(left, right, texture, params, disparity, winnerRight, region);
+  // Keys G * cost + (k mod G), G = 2^shift, must stay below 65535 too.
+  int shift = 0;
+  while (shift < 3 && ((maxDiff * side * side) << (shift + 1)) + (2 << shift) - 1 < 0xFFFF)
+    ++shift;
+  Matcher matcher(left, right, texture, params, disparity, winnerRight, region, shift);
   matcher.run(region.y0, region.y1);
 }
 
