@@ -23,6 +23,9 @@ namespace horopter::avx2 {
 
 namespace {
 
+// A private copy of the reference's row reflection: a shared inline function
+// compiled here with AVX2 flags could be the copy the linker keeps for the
+// scalar callers too, and fault on a CPU without AVX2.
 int reflect101(int y, int height) {
   if (height == 1) return 0;
   if (y < 0) return -y;
