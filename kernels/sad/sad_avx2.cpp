@@ -299,9 +299,7 @@ class Matcher {
         pxMin_(padded_),
         pxBest_(padded_),
         pxLimit_(padded_),
-        pxAbove_(padded_),
-        pxBelow_(padded_),
-        pxNext_(padded_) {
+        pxAbove_(padded_) {
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -721,23 +719,28 @@ class Matcher {
       }
     }
     const std::int16_t invalid = invalidDisparity(params_);
-    // C(b - 1) and C(b + 1) by scalar loads (rows -1 and count hold "no
-    // cost"): integer ports, while the vector ones are the busy ones.
-    {
-      const int* best = pxBest_.get();
-      int* below = pxBelow_.get();
-      int* above = pxNext_.get();
-      const std::int16_t* base = costs(0);
-      for (int j = from; j < to; ++j) {
-        const std::int16_t* entry = base + static_cast<std::ptrdiff_t>(best[j]) * rowLen + j;
-        below[j] = costOfKey(entry[-rowLen], kShift);
-        above[j] = costOfKey(entry[rowLen], kShift);
-      }
-    }
+    // C(b - 1) and C(b + 1) by gathers of 32 bits at 16-bit entries (the
+    // entry after each is inside the row's edge), low halves kept; rows -1
+    // and count hold "no cost".
+    const std::int16_t* base = costs(0);
+    const __m256i rowLenV = _mm256_set1_epi32(rowLen_);
+    const __m256i step8 = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i low16 = _mm256_set1_epi32(0xFFFF);
+    const auto costsOfKeys = [&](__m256i gathered) {
+      const __m256i key =
+          _mm256_xor_si256(_mm256_and_si256(gathered, low16), _mm256_set1_epi32(kBias));
+      return _mm256_or_si256(_mm256_srli_epi32(key, kShift),
+                             _mm256_and_si256(_mm256_cmpeq_epi32(key, low16), low16));
+    };
     int i = from;
     for (; i + 8 <= to; i += 8) {
       const __m256i c0 = load8x32(pxMin_.get() + i), b = load8x32(pxBest_.get() + i);
-      const __m256i below = load8x32(pxBelow_.get() + i), above = load8x32(pxNext_.get() + i);
+      const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(b, rowLenV),
+                                              _mm256_add_epi32(_mm256_set1_epi32(i), step8));
+      const __m256i below = costsOfKeys(
+          _mm256_i32gather_epi32(reinterpret_cast<const int*>(base - rowLen_), offset, 2));
+      const __m256i above = costsOfKeys(
+          _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + rowLen_), offset, 2));
       __m256i bad = _mm256_setzero_si256();
       if (useTexture_) {
         bad = _mm256_cmpgt_epi32(_mm256_set1_epi32(params_.textureThreshold),
@@ -788,7 +791,7 @@ class Matcher {
                        _mm256_castsi256_si128(packed));
     }
     for (; i < to; ++i)
-      outDisparity[x0_ + i] = decideOne(i);
+      outDisparity[x0_ + i] = decideOne(i, kShift);
   }
 
   // The cost of a stored key; "no cost" stays 65535.
@@ -798,9 +801,10 @@ class Matcher {
   }
 
   // decideLeft's last step for one pixel, in scalar.
-  std::int16_t decideOne(int i) const {
+  std::int16_t decideOne(int i, int shift) const {
     const int c0 = pxMin_.get()[i], b = pxBest_.get()[i];
-    const int below = pxBelow_.get()[i], above = pxNext_.get()[i];
+    const std::int16_t* entry = costs(b) + i;
+    const int below = costOfKey(entry[-rowLen_], shift), above = costOfKey(entry[rowLen_], shift);
     if (useTexture_ && pxTexture_.get()[i] < params_.textureThreshold)
       return invalidDisparity(params_);
     if (params_.uniquenessRatio > 0) {
@@ -866,8 +870,6 @@ class Matcher {
   // Per pixel i = x - x0: texture window sum, least cost, winner lane,
   // uniqueness limit and lanes above it.
   AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_;
-  // Per pixel: C(b - 1) and C(b + 1), "no cost" (65535) past the range's ends.
-  AlignedArray<int> pxBelow_, pxNext_;
 };
 
 }  // namespace
