@@ -8,6 +8,7 @@
 #include "horopter_mask/horopter_mask.hpp"
 #include "median/median.hpp"
 #include "occlusion/occlusion.hpp"
+#include "opencl/opencl_backend.hpp"
 #include "prefilter/prefilter.hpp"
 #include "sad/sad.hpp"
 
@@ -70,7 +71,16 @@ const Backend& scalarBackend() {
 
 const std::vector<const Backend*>& registeredBackends() {
   static const Backend avx2 = makeAvx2();
-  static const std::vector<const Backend*> all = {&scalarBackend(), &avx2};
+  // OpenCL entries sit before the CPU SIMD ones, so that `auto` never picks
+  // a device path on its own: `--backend opencl` asks for it.
+  static const std::vector<Backend> opencl = opencl::makeBackends();
+  static const std::vector<const Backend*> all = [] {
+    std::vector<const Backend*> list = {&scalarBackend()};
+    for (const Backend& b : opencl)
+      list.push_back(&b);
+    list.push_back(&avx2);
+    return list;
+  }();
   return all;
 }
 
@@ -94,7 +104,11 @@ const Backend& findBackend(const std::string& name) {
                   "' is not available on this machine: " + b->unavailableReason);
     return *b;
   }
-  throw Error("unknown backend '" + wanted + "': use one of " + knownNames());
+  // "opencl:N" or part of an OpenCL device's name.
+  const std::string device = opencl::resolveBackendName(wanted);
+  if (!device.empty()) return findBackend(device);
+  throw Error("unknown backend '" + wanted + "': use one of " + knownNames() +
+              ", opencl:N or part of an OpenCL device's name (see `horopter devices`)");
 }
 
 }  // namespace horopter

@@ -1,0 +1,86 @@
+// Enqueueing the front-end kernels on a queue: buffers, row transfers and
+// one function per kernel. Device images are tightly packed (row pitch =
+// width * pixel bytes) and hold the whole frame; a call transfers and
+// computes only the rows it needs. Shared by the synchronous kernel table
+// and the asynchronous OpenCL front end.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "horopter/backend.hpp"
+#include "horopter/image.hpp"
+#include "horopter/stereo_params.hpp"
+#include "opencl/cl_api.hpp"
+#include "opencl/device.hpp"
+
+namespace horopter::opencl {
+
+// A device buffer that grows on demand and is otherwise reused.
+class Buffer {
+ public:
+  Buffer() = default;
+  ~Buffer();
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  // At least `bytes` (1 at the least), reallocated only to grow.
+  cl_mem get(cl_context context, std::size_t bytes);
+
+ private:
+  cl_mem mem_ = nullptr;
+  std::size_t bytes_ = 0;
+};
+
+// An event list that releases its events.
+class Events {
+ public:
+  Events() = default;
+  ~Events() { clear(); }
+  Events(const Events&) = delete;
+  Events& operator=(const Events&) = delete;
+  cl_event* add();  // a slot for an enqueue call's event
+  void clear();
+  const std::vector<cl_event>& list() const { return events_; }
+
+ private:
+  std::vector<cl_event> events_;
+};
+
+// The kernels of a device's program; one set per thread that enqueues.
+struct Kernels {
+  explicit Kernels(Device& device);
+  KernelHandle prefilter, sad, lrCheck, median, mask;
+};
+
+// Rows [r0, r1) of `view` into the tight buffer / back from it.
+void writeRows(cl_command_queue q, cl_mem buffer, const ConstImageView& view, int r0, int r1,
+               bool blocking, cl_event* event);
+void readRows(cl_command_queue q, cl_mem buffer, const ImageView& view, int r0, int r1,
+              bool blocking, cl_event* event);
+
+void enqueuePrefilter(cl_command_queue q, cl_kernel k, cl_mem src, int width, int height, int cap,
+                      RowRange rows, cl_mem filtered, cl_mem texture, bool wantFiltered,
+                      bool wantTexture, cl_event* event);
+
+// Scratch of the matcher, per strip of rows.
+struct SadScratch {
+  Buffer colsum, colTex, rightCost, rightD;
+};
+void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,
+                  cl_mem left, cl_mem right, cl_mem texture, int width, int height,
+                  const StereoParams& params, RowRange rows, cl_mem disparity, cl_mem winnerRight,
+                  SadScratch& scratch, cl_event* event);
+
+void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,
+                           int width, const StereoParams& params, RowRange rows, cl_event* event);
+
+void enqueueMedian(cl_command_queue q, cl_kernel k, cl_mem src, cl_mem dst, int width, int height,
+                   int kernelSize, int minValid, std::int16_t invalid, RowRange rows,
+                   cl_event* event);
+
+// `channels` 0 (no segmented image), 1 or 3.
+void enqueueMask(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem thresholds, int width,
+                 std::int16_t invalid, RowRange rows, cl_mem mask, cl_mem image, cl_mem segmented,
+                 int channels, cl_event* event);
+
+}  // namespace horopter::opencl
