@@ -1,0 +1,92 @@
+// Chessboard corners with sub-pixel refinement, for every stereo pair.
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <regex>
+#include <string>
+
+#include "horopter/calibration.hpp"
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+namespace {
+
+std::string sizeText(cv::Size s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
+
+cv::Mat toGrey(const cv::Mat& image) {
+  if (image.type() == CV_8UC1) return image;
+  cv::Mat grey;
+  if (image.type() == CV_8UC3) {
+    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  } else if (image.type() == CV_8UC4) {
+    cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
+  } else {
+    throw Error("calibration images must be 8-bit grey or colour");
+  }
+  return grey;
+}
+
+}  // namespace
+
+cv::Size parseBoardSize(const std::string& text) {
+  static const std::regex form(R"((\d{1,3})x(\d{1,3}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, form))
+    throw Error("board size must be COLSxROWS of inner corners, e.g. 9x6, got '" + text + "'");
+  const cv::Size s(std::stoi(m[1]), std::stoi(m[2]));
+  if (s.width < 2 || s.height < 2)
+    throw Error("a board needs at least 2x2 inner corners, got " + text);
+  if (s.width == s.height)
+    throw Error("a square board (" + text +
+                ") is ambiguous under rotation: use one with different corner counts, e.g. 9x6");
+  return s;
+}
+
+std::vector<cv::Point2f> findBoardCorners(const cv::Mat& image, cv::Size innerCorners) {
+  if (image.empty()) throw Error("cannot look for a board in an empty image");
+  const cv::Mat grey = toGrey(image);
+  std::vector<cv::Point2f> corners;
+  const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE;
+  if (!cv::findChessboardCorners(grey, innerCorners, corners, flags)) return {};
+  cv::cornerSubPix(grey, corners, cv::Size(11, 11), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
+  return corners;
+}
+
+BoardDetections detectBoards(const std::vector<StereoImagePair>& pairs, cv::Size innerCorners,
+                             const ProgressFn& progress) {
+  BoardDetections out;
+  const std::string board = sizeText(innerCorners);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const StereoImagePair& p = pairs[i];
+    if (p.left.empty() || p.right.empty())
+      throw Error("view " + p.name + ": an image is empty (unreadable file?)");
+    if (p.left.size() != p.right.size())
+      throw Error("view " + p.name + ": left is " + sizeText(p.left.size()) + " but right is " +
+                  sizeText(p.right.size()) + ": both cameras must have one image size");
+    if (out.imageSize.empty()) out.imageSize = p.left.size();
+    if (p.left.size() != out.imageSize)
+      throw Error("view " + p.name + " is " + sizeText(p.left.size()) + " but the first view is " +
+                  sizeText(out.imageSize) +
+                  ": every view must come from the same cameras at one resolution");
+    BoardView view{p.name, findBoardCorners(p.left, innerCorners),
+                   findBoardCorners(p.right, innerCorners)};
+    const std::string tag =
+        "view " + std::to_string(i + 1) + "/" + std::to_string(pairs.size()) + " " + p.name + ": ";
+    if (view.left.empty() || view.right.empty()) {
+      const char* where = view.left.empty() && view.right.empty() ? "either image"
+                          : view.left.empty()                     ? "the left image"
+                                                                  : "the right image";
+      out.skipped.push_back(p.name + ": no " + board + " board in " + where);
+      if (progress) progress(tag + "skipped, no " + board + " board in " + where);
+      continue;
+    }
+    if (progress) progress(tag + std::to_string(view.left.size()) + " corners in both images");
+    out.views.push_back(std::move(view));
+  }
+  return out;
+}
+
+}  // namespace horopter
