@@ -1,4 +1,5 @@
 // Chessboard corners with sub-pixel refinement, for every stereo pair.
+#include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <regex>
@@ -59,28 +60,45 @@ BoardDetections detectBoards(const std::vector<StereoImagePair>& pairs, cv::Size
                              const ProgressFn& progress) {
   BoardDetections out;
   const std::string board = sizeText(innerCorners);
+  // The calibration's image size: the one most pairs have (a stray image of
+  // another camera or resolution must not decide it).
+  std::map<std::pair<int, int>, int> sizes;
+  for (const StereoImagePair& p : pairs)
+    if (!p.left.empty() && p.left.size() == p.right.size()) ++sizes[{p.left.cols, p.left.rows}];
+  int most = 0;
+  for (const auto& [size, count] : sizes) {
+    if (count > most) {
+      most = count;
+      out.imageSize = cv::Size(size.first, size.second);
+    }
+  }
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const StereoImagePair& p = pairs[i];
-    if (p.left.empty() || p.right.empty())
-      throw Error("view " + p.name + ": an image is empty (unreadable file?)");
-    if (p.left.size() != p.right.size())
-      throw Error("view " + p.name + ": left is " + sizeText(p.left.size()) + " but right is " +
-                  sizeText(p.right.size()) + ": both cameras must have one image size");
-    if (out.imageSize.empty()) out.imageSize = p.left.size();
-    if (p.left.size() != out.imageSize)
-      throw Error("view " + p.name + " is " + sizeText(p.left.size()) + " but the first view is " +
-                  sizeText(out.imageSize) +
-                  ": every view must come from the same cameras at one resolution");
-    BoardView view{p.name, findBoardCorners(p.left, innerCorners),
-                   findBoardCorners(p.right, innerCorners)};
     const std::string tag =
         "view " + std::to_string(i + 1) + "/" + std::to_string(pairs.size()) + " " + p.name + ": ";
-    if (view.left.empty() || view.right.empty()) {
-      const char* where = view.left.empty() && view.right.empty() ? "either image"
-                          : view.left.empty()                     ? "the left image"
-                                                                  : "the right image";
-      out.skipped.push_back(p.name + ": no " + board + " board in " + where);
-      if (progress) progress(tag + "skipped, no " + board + " board in " + where);
+    std::string why;
+    if (p.left.empty() || p.right.empty()) {
+      why = "an image is empty";
+    } else if (p.left.size() != p.right.size()) {
+      why = "left is " + sizeText(p.left.size()) + " but right is " + sizeText(p.right.size());
+    } else if (p.left.size() != out.imageSize) {
+      why = "it is " + sizeText(p.left.size()) + ", not the " + sizeText(out.imageSize) +
+            " of most views";
+    }
+    BoardView view{p.name, {}, {}};
+    if (why.empty()) {
+      view.left = findBoardCorners(p.left, innerCorners);
+      view.right = findBoardCorners(p.right, innerCorners);
+      if (view.left.empty() || view.right.empty()) {
+        why = "no " + board + " board in " +
+              (view.left.empty() && view.right.empty() ? "either image"
+               : view.left.empty()                     ? "the left image"
+                                                       : "the right image");
+      }
+    }
+    if (!why.empty()) {
+      out.skipped.push_back(p.name + ": " + why);
+      if (progress) progress(tag + "skipped, " + why);
       continue;
     }
     if (progress) progress(tag + std::to_string(view.left.size()) + " corners in both images");

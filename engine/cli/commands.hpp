@@ -10,5 +10,7 @@ int runMainJob(Args& args);
 int runDisparity(Args& args);
 int runEvalStereo(Args& args);
 int runDevices(Args& args);
+int runCalibrate(Args& args);
+int runRectify(Args& args);
 
 }  // namespace horopter::cli

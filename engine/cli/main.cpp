@@ -17,7 +17,9 @@ const char* kUsage =
     "  run           the main job on the built-in default input (the Aloe pair) -> out/\n"
     "  disparity     disparity, cleanup, median and horopter mask of a rectified pair\n"
     "  eval-stereo   accuracy against ground truth, cv::StereoBM beside us (--peer opencv)\n"
-    "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n";
+    "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n"
+    "  calibrate     stereo calibration from chessboard views -> calib.yml (OpenCV YAML)\n"
+    "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n";
 
 }  // namespace
 
@@ -35,6 +37,8 @@ int main(int argc, char** argv) {
     if (command == "disparity") return runDisparity(args);
     if (command == "eval-stereo") return runEvalStereo(args);
     if (command == "devices") return runDevices(args);
+    if (command == "calibrate") return runCalibrate(args);
+    if (command == "rectify") return runRectify(args);
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
     return 2;
   } catch (const horopter::Error& e) {

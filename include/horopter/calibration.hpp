@@ -44,16 +44,16 @@ struct BoardView {
 };
 
 struct BoardDetections {
-  cv::Size imageSize;
+  cv::Size imageSize;                // the size most pairs have
   std::vector<BoardView> views;      // pairs where the board was found in both images
   std::vector<std::string> skipped;  // "NAME: why", in input order
 };
 
 using ProgressFn = std::function<void(const std::string& line)>;
 
-// Finds the board in every pair; a pair where either image misses the board is
-// skipped and named. Throws horopter::Error for empty images or pairs whose
-// sizes differ (from each other or from the first pair).
+// Finds the board in every pair. A pair is skipped, and named with the reason
+// in `skipped`, when either image misses the board, is empty, or differs in
+// size from its partner or from the size most pairs have (imageSize).
 BoardDetections detectBoards(const std::vector<StereoImagePair>& pairs, cv::Size innerCorners,
                              const ProgressFn& progress = {});
 

@@ -279,22 +279,26 @@ TEST(CalibrationInput, BoardSizeText) {
   expectError([] { parseBoardSize("7x7"); }, {"square board"});
 }
 
-TEST(CalibrationInput, PairsOfDifferentSizesAreRefused) {
-  std::vector<StereoImagePair> pairs{{"odd pair", cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)),
-                                      cv::Mat(40, 64, CV_8UC1, cv::Scalar(0))}};
-  expectError([&] { detectBoards(pairs, kBoard); }, {"odd pair", "64x48", "64x40"});
-  std::vector<StereoImagePair> blanks{
-      {"a", cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)), cv::Mat(48, 64, CV_8UC1, cv::Scalar(0))},
-      {"b", cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)), cv::Mat(48, 64, CV_8UC1, cv::Scalar(0))},
-      {"c", cv::Mat(48, 64, CV_8UC1, cv::Scalar(0)), cv::Mat(48, 64, CV_8UC1, cv::Scalar(0))}};
-  const BoardDetections none = detectBoards(blanks, kBoard);
+TEST(CalibrationInput, PairsOfAnotherSizeAreSkippedAndNamed) {
+  const auto grey = [](int w, int h) { return cv::Mat(h, w, CV_8UC1, cv::Scalar(0)); };
+  const std::vector<StereoImagePair> pairs{{"odd pair", grey(64, 48), grey(64, 40)},
+                                           {"a", grey(64, 48), grey(64, 48)},
+                                           {"b", grey(64, 48), grey(64, 48)},
+                                           {"stray", grey(32, 24), grey(32, 24)},
+                                           {"empty", cv::Mat(), grey(64, 48)}};
+  const BoardDetections none = detectBoards(pairs, kBoard);
+  EXPECT_EQ(none.imageSize, cv::Size(64, 48));
   EXPECT_TRUE(none.views.empty());
-  EXPECT_EQ(none.skipped.size(), 3u);
+  ASSERT_EQ(none.skipped.size(), 5u);
+  EXPECT_EQ(none.skipped[0], "odd pair: left is 64x48 but right is 64x40");
+  EXPECT_EQ(none.skipped[1], "a: no 9x6 board in either image");
+  EXPECT_EQ(none.skipped[3], "stray: it is 32x24, not the 64x48 of most views");
+  EXPECT_EQ(none.skipped[4], "empty: an image is empty");
   expectError(
       [&] {
         calibrateStereo(none, {kBoard, kSquare}, {3, 0.0});
       },
-      {"only 0 of 3", "at least 3"});
+      {"only 0 of 5", "at least 3", "stray"});
 }
 
 }  // namespace
