@@ -27,7 +27,9 @@ int runDevices(Args& args) {
     std::cout << "Usage: horopter devices [--json]\n\n"
                  "Lists the CPU and its SIMD features, every backend this build knows (and\n"
                  "whether it runs here), and the OpenCL platforms and devices. `auto` picks the\n"
-                 "last available backend; HOROPTER_BACKEND=name overrides it.\n";
+                 "last available backend; HOROPTER_BACKEND=name overrides it. OpenCL is chosen\n"
+                 "with --backend opencl (a GPU if present, else the CPU device), opencl:N or a\n"
+                 "part of a device's name.\n";
     return 0;
   }
   const bool asJson = args.flag("--json");
@@ -56,8 +58,8 @@ int runDevices(Args& args) {
       << ", \"error\": " << quoted(cl.error) << ", \"devices\": [";
     for (std::size_t i = 0; i < cl.devices.size(); ++i) {
       const auto& d = cl.devices[i];
-      o << (i ? ", " : "") << "{\"platform\": " << d.platform << ", \"device\": " << d.device
-        << ", \"platform_name\": " << quoted(d.platformName)
+      o << (i ? ", " : "") << "{\"backend\": \"opencl:" << i << "\", \"platform\": " << d.platform
+        << ", \"device\": " << d.device << ", \"platform_name\": " << quoted(d.platformName)
         << ", \"name\": " << quoted(d.deviceName) << ", \"type\": " << quoted(d.type)
         << ", \"version\": " << quoted(d.version) << ", \"compute_units\": " << d.computeUnits
         << ", \"global_mem_bytes\": " << d.globalMemBytes << "}";
@@ -76,15 +78,16 @@ int runDevices(Args& args) {
     if (!b->available) std::cout << " (" << b->unavailableReason << ")";
     std::cout << "\n";
   }
-  std::cout << "OpenCL devices:\n";
+  std::cout << "OpenCL devices (--backend opencl:N, or part of the name; --backend opencl = the "
+               "first GPU, else the first device):\n";
   if (cl.devices.empty()) std::cout << "  none: " << cl.error << "\n";
-  for (const auto& d : cl.devices) {
-    std::cout << "  " << d.platform << ":" << d.device << "  " << d.type << "  " << d.deviceName
-              << " [" << d.platformName << ", " << d.version << ", " << d.computeUnits
-              << " compute units, " << (d.globalMemBytes >> 20) << " MiB]\n";
+  for (std::size_t i = 0; i < cl.devices.size(); ++i) {
+    const auto& d = cl.devices[i];
+    std::cout << "  opencl:" << i << "  " << d.type << "  " << d.deviceName << "\n    platform "
+              << d.platform << " (" << d.platformName << "), device " << d.device << ", "
+              << d.version << ", " << d.computeUnits << " compute units, "
+              << (d.globalMemBytes >> 20) << " MiB global memory\n";
   }
-  std::cout << "  (OpenCL kernels arrive with the OpenCL backend; these are the devices it "
-               "will be able to use)\n";
   return 0;
 }
 

@@ -39,7 +39,7 @@ int runEvalStereo(Args& args) {
            "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown.\n\n"
         << stereoFlagsHelp(StereoParams{}, MedianParams{})
         << "Other:\n"
-           "  --backend B              scalar, avx2 or auto (default auto)\n"
+           "  --backend B              scalar, avx2, opencl, opencl:N or auto (default auto)\n"
            "  --peer opencv            also run cv::StereoBM with the same parameters and the\n"
            "                           same --threads\n"
            "  --runs N                 timed runs per method, after one warm-up (default 3)\n"

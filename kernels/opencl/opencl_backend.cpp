@@ -96,4 +96,11 @@ std::string resolveBackendName(const std::string& wanted) {
   return "";
 }
 
+int deviceIndexOf(const std::string& backendName) {
+  if (backendName == "opencl") return defaultDevice();
+  for (const Device* d : devices())
+    if (backendName == "opencl:" + std::to_string(d->desc().index)) return d->desc().index;
+  return -1;
+}
+
 }  // namespace horopter::opencl

@@ -26,4 +26,8 @@ std::vector<Backend> makeBackends();
 // of range, listing the devices.
 std::string resolveBackendName(const std::string& wanted);
 
+// The device index behind a registered OpenCL backend's name ("opencl" is
+// the default device); -1 for any other name.
+int deviceIndexOf(const std::string& backendName);
+
 }  // namespace horopter::opencl

@@ -3,6 +3,7 @@
 #include "opencl/opencl_backend.hpp"
 
 #include "horopter/error.hpp"
+#include "opencl/pipeline.hpp"
 
 namespace horopter::opencl {
 
@@ -20,6 +21,26 @@ std::string resolveBackendName(const std::string& wanted) {
   if (wanted.rfind("opencl:", 0) == 0)
     throw Error("no OpenCL device '" + wanted + "': this build has no OpenCL support");
   return "";
+}
+
+int deviceIndexOf(const std::string&) {
+  return -1;
+}
+
+struct Pipeline::Impl {};
+void setInjectedEnqueueFailure(bool) {}
+
+Pipeline::Pipeline(const std::string&, const StereoParams&, const MedianParams&, int) {
+  throw Error(
+      "this build has no OpenCL support (configure with -DHOROPTER_WITH_OPENCL=ON and the OpenCL "
+      "headers and loader installed)");
+}
+Pipeline::~Pipeline() = default;
+void Pipeline::submit(int, const ConstImageView&, const ConstImageView&, Image&) {}
+void Pipeline::wait(int, std::vector<OpenClStageTime>&) {}
+const std::string& Pipeline::deviceName() const {
+  static const std::string none = "none";
+  return none;
 }
 
 }  // namespace horopter::opencl

@@ -1,0 +1,201 @@
+#include "opencl/pipeline.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+
+#include "horopter/error.hpp"
+#include "occlusion/occlusion.hpp"
+#include "opencl/device.hpp"
+#include "opencl/launch.hpp"
+#include "opencl/opencl_backend.hpp"
+
+namespace horopter::opencl {
+
+namespace {
+
+std::atomic<bool> g_failEnqueue{false};
+
+bool cpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+double eventMs(cl_event e) {
+  cl_ulong start = 0, end = 0;
+  if (clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr) !=
+          CL_SUCCESS ||
+      clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr) != CL_SUCCESS)
+    return 0;
+  return static_cast<double>(end - start) * 1e-6;
+}
+
+}  // namespace
+
+struct Pipeline::Impl {
+  struct Slot {
+    Buffer left, right, leftFiltered, rightFiltered, texture, disparity, winner, median;
+    SadScratch sad;
+    Image clean;  // the left-right checked map, for the CPU speckle filter
+    Image* out = nullptr;
+    int width = 0, height = 0;
+    bool pending = false;
+    Events events;
+    std::vector<const char*> names;  // one per event
+    cl_event* add(const char* name) {
+      names.push_back(name);
+      return events.add();
+    }
+  };
+
+  Device* device = nullptr;
+  StereoParams stereo;
+  MedianParams median;
+  cl_command_queue queue = nullptr;
+  std::unique_ptr<Kernels> kernels;
+  std::vector<Slot> slots;
+};
+
+Pipeline::Pipeline(const std::string& backendName, const StereoParams& stereo,
+                   const MedianParams& median, int slots)
+    : impl_(std::make_unique<Impl>()) {
+  validate(stereo);
+  validate(median);
+  const int index = deviceIndexOf(backendName);
+  if (index < 0 || index >= static_cast<int>(devices().size()))
+    throw Error("'" + backendName + "' is not an OpenCL device here");
+  Impl& s = *impl_;
+  s.device = devices()[static_cast<std::size_t>(index)];
+  s.stereo = stereo;
+  s.median = median;
+  s.kernels = std::make_unique<Kernels>(*s.device);  // builds the program (or throws)
+  s.queue = createQueue(*s.device);
+  s.slots = std::vector<Impl::Slot>(static_cast<std::size_t>(slots));
+}
+
+Pipeline::~Pipeline() {
+  if (impl_->queue) {
+    clFinish(impl_->queue);
+    impl_->slots.clear();
+    clReleaseCommandQueue(impl_->queue);
+  }
+}
+
+const std::string& Pipeline::deviceName() const {
+  return impl_->device->desc().name;
+}
+
+void Pipeline::submit(int index, const ConstImageView& left, const ConstImageView& right,
+                      Image& out) {
+  Impl& s = *impl_;
+  Impl::Slot& slot = s.slots[static_cast<std::size_t>(index)];
+  if (g_failEnqueue)
+    throw Error("OpenCL: enqueueing the frame failed: injected enqueue failure (test hook)");
+  if (slot.pending) {
+    std::vector<OpenClStageTime> ignored;
+    wait(index, ignored);
+  }
+  slot.events.clear();
+  slot.names.clear();
+  const int w = left.width, h = left.height;
+  const StereoParams& p = s.stereo;
+  cl_context ctx = s.device->context();
+  cl_command_queue q = s.queue;
+  const std::size_t u8 = static_cast<std::size_t>(w) * h, s16 = u8 * 2;
+  const RowRange all{0, h};
+
+  cl_mem l = slot.left.get(ctx, u8), r = slot.right.get(ctx, u8);
+  cl_mem lf = slot.leftFiltered.get(ctx, u8), rf = slot.rightFiltered.get(ctx, u8);
+  cl_mem tex = slot.texture.get(ctx, u8);
+  cl_mem d = slot.disparity.get(ctx, s16), wr = slot.winner.get(ctx, s16);
+  writeRows(q, l, left, 0, h, false, slot.add("upload left"));
+  writeRows(q, r, right, 0, h, false, slot.add("upload right"));
+  const bool xsobel = p.preFilterType == PreFilterType::XSobel;
+  const bool wantTexture = p.textureThreshold > 0;
+  if (xsobel) {
+    enqueuePrefilter(q, s.kernels->prefilter.get(), l, w, h, p.preFilterCap, all, lf, tex, true,
+                     wantTexture, slot.add("prefilter left"));
+    enqueuePrefilter(q, s.kernels->prefilter.get(), r, w, h, p.preFilterCap, all, rf, tex, true,
+                     false, slot.add("prefilter right"));
+  } else if (wantTexture) {
+    enqueuePrefilter(q, s.kernels->prefilter.get(), l, w, h, p.preFilterCap, all, lf, tex, false,
+                     true, slot.add("texture"));
+  }
+  enqueueMatch(q, s.kernels->sad.get(), s.device->desc(), ctx, xsobel ? lf : l, xsobel ? rf : r,
+               tex, w, h, p, all, d, wr, slot.sad, slot.add("match"));
+  if (p.disp12MaxDiff >= 0)
+    enqueueLeftRightCheck(q, s.kernels->lrCheck.get(), d, wr, w, p, all,
+                          slot.add("left-right check"));
+  slot.out = &out;
+  slot.width = w;
+  slot.height = h;
+  if (p.speckleWindowSize > 0) {
+    // The speckle filter runs on the CPU in wait(): bring the map back.
+    if (slot.clean.width() != w || slot.clean.height() != h)
+      slot.clean = Image(w, h, PixelType::S16C1);
+    readRows(q, d, slot.clean.view(), 0, h, false, slot.add("download"));
+  } else if (s.median.kernelSize > 0) {
+    cl_mem m = slot.median.get(ctx, s16);
+    enqueueMedian(q, s.kernels->median.get(), d, m, w, h, s.median.kernelSize,
+                  effectiveMinValid(s.median), invalidDisparity(p), all, slot.add("median"));
+    readRows(q, m, out.view(), 0, h, false, slot.add("download"));
+  } else {
+    readRows(q, d, out.view(), 0, h, false, slot.add("download"));
+  }
+  check(clFlush(q), "submitting the frame");
+  slot.pending = true;
+}
+
+void Pipeline::wait(int index, std::vector<OpenClStageTime>& times) {
+  Impl& s = *impl_;
+  Impl::Slot& slot = s.slots[static_cast<std::size_t>(index)];
+  times.clear();
+  if (!slot.pending) return;
+  slot.pending = false;
+  const auto& events = slot.events.list();
+  check(clWaitForEvents(static_cast<cl_uint>(events.size()), events.data()),
+        "waiting for the frame");
+  for (std::size_t i = 0; i < events.size(); ++i)
+    times.push_back({slot.names[i], eventMs(events[i]), true});
+  if (s.stereo.speckleWindowSize == 0) return;
+
+  const auto start = std::chrono::steady_clock::now();
+  static const bool avx2 = cpuHasAvx2();
+  if (avx2)
+    avx2::filterSpeckles(slot.clean.view(), s.stereo);
+  else
+    scalar::filterSpeckles(slot.clean.view(), s.stereo);
+  times.push_back(
+      {"speckle filter (CPU)",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+       false});
+  const int w = slot.width, h = slot.height;
+  ImageView out = slot.out->view();
+  if (s.median.kernelSize == 0) {
+    for (int y = 0; y < h; ++y)
+      std::memcpy(out.row<void>(y), slot.clean.view().row<void>(y),
+                  static_cast<std::size_t>(w) * 2);
+    return;
+  }
+  cl_context ctx = s.device->context();
+  const std::size_t s16 = static_cast<std::size_t>(w) * h * 2;
+  cl_mem d = slot.disparity.get(ctx, s16), m = slot.median.get(ctx, s16);
+  Events more;
+  writeRows(s.queue, d, slot.clean.view(), 0, h, false, more.add());
+  enqueueMedian(s.queue, s.kernels->median.get(), d, m, w, h, s.median.kernelSize,
+                effectiveMinValid(s.median), invalidDisparity(s.stereo), {0, h}, more.add());
+  readRows(s.queue, m, out, 0, h, true, more.add());
+  const char* names[] = {"upload cleaned", "median", "download median"};
+  for (std::size_t i = 0; i < more.list().size(); ++i)
+    times.push_back({names[i], eventMs(more.list()[i]), true});
+}
+
+void setInjectedEnqueueFailure(bool on) {
+  g_failEnqueue = on;
+}
+
+}  // namespace horopter::opencl

@@ -1,0 +1,161 @@
+// The asynchronous OpenCL front end: several frames in flight give the
+// scalar front end's results in order; stage times come from profiling
+// events; an injected build or enqueue failure falls back to the CPU
+// without losing or reordering frames; a bad device name is an error.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "horopter/error.hpp"
+#include "horopter/frontend.hpp"
+#include "horopter/opencl_frontend.hpp"
+#include "opencl/pipeline.hpp"
+#include "opencl/program_cache.hpp"
+#include "opencl_support.hpp"
+#include "test_support.hpp"
+
+namespace horopter::test {
+namespace {
+
+struct Setting {
+  const char* what;
+  StereoParams stereo;
+  MedianParams median;
+};
+
+std::vector<Setting> settings() {
+  std::vector<Setting> out;
+  out.push_back({"defaults (speckles on the CPU, median 5)", StereoParams{}, MedianParams{}});
+  StereoParams noSpeckles;
+  noSpeckles.numDisparities = 32;
+  noSpeckles.speckleWindowSize = 0;
+  MedianParams median3;
+  median3.kernelSize = 3;
+  out.push_back({"no speckles: the whole chain on the device", noSpeckles, median3});
+  StereoParams raw = noSpeckles;
+  raw.preFilterType = PreFilterType::None;
+  raw.disp12MaxDiff = -1;
+  raw.minDisparity = -5;
+  MedianParams off;
+  off.kernelSize = 0;
+  out.push_back({"raw, no check, no median", raw, off});
+  StereoParams speckleNoMedian;
+  speckleNoMedian.numDisparities = 16;
+  speckleNoMedian.blockSize = 7;
+  out.push_back({"speckles, no median", speckleNoMedian, off});
+  return out;
+}
+
+std::vector<StereoPair> frames(int count) {
+  std::vector<StereoPair> out;
+  for (int i = 0; i < count; ++i)
+    out.push_back(stepScenePair(157 + 8 * i, 61, StepScene{40, 110, 10, 50, 30 + i, 6 + i},
+                                static_cast<std::uint64_t>(100 + i)));
+  return out;
+}
+
+// Scalar front-end results, one per frame.
+std::vector<TestImage> expected(const Setting& s, const std::vector<StereoPair>& pairs) {
+  StereoFrontend ref(s.stereo, s.median, scalarBackend());
+  std::vector<TestImage> out;
+  for (const StereoPair& p : pairs)
+    out.push_back(copyOf(ref.computeDisparity(p.left.view(), p.right.view()).view()));
+  return out;
+}
+
+TEST(OpenClFrontend, FramesInFlightEqualTheScalarFrontendInOrder) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(5);
+  for (const Setting& s : settings()) {
+    SCOPED_TRACE(s.what);
+    const std::vector<TestImage> want = expected(s, pairs);
+    OpenClFrontend frontend(s.stereo, s.median, "opencl", 3);
+    ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+    // Three in flight, then one at a time; the fourth submit completes the first.
+    std::vector<OpenClFrontend::Ticket> tickets;
+    for (std::size_t i = 0; i < 3; ++i)
+      tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view()));
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_TRUE(sameImage(want[i].view(), frontend.wait(tickets[i]).view())) << "frame " << i;
+    for (std::size_t i = 3; i < pairs.size(); ++i) {
+      const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
+      EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+    }
+    EXPECT_FALSE(frontend.onCpu());
+  }
+}
+
+TEST(OpenClFrontend, ProfileNamesEveryStage) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(1);
+  OpenClFrontend frontend(StereoParams{}, MedianParams{}, "opencl", 1);
+  frontend.computeDisparity(pairs[0].left.view(), pairs[0].right.view());
+  std::vector<std::string> stages;
+  for (const OpenClStageTime& t : frontend.profile()) {
+    stages.push_back(t.stage);
+    EXPECT_GE(t.ms, 0.0) << t.stage;
+  }
+  for (const char* stage : {"upload left", "prefilter left", "match", "left-right check",
+                            "download", "speckle filter (CPU)", "median"})
+    EXPECT_NE(std::find(stages.begin(), stages.end(), stage), stages.end()) << stage;
+}
+
+TEST(OpenClFrontend, BadDeviceNamesAreErrors) {
+  EXPECT_THROW(OpenClFrontend(StereoParams{}, MedianParams{}, "opencl:99"), Error);
+  EXPECT_THROW(OpenClFrontend(StereoParams{}, MedianParams{}, "no-such-gpu-anywhere"), Error);
+  EXPECT_THROW(OpenClFrontend(StereoParams{}, MedianParams{}, "opencl", 0), Error);
+}
+
+// Turns a test hook on for one scope.
+class Injected {
+ public:
+  explicit Injected(void (*hook)(bool)) : hook_(hook) { hook_(true); }
+  ~Injected() { hook_(false); }
+  Injected(const Injected&) = delete;
+  Injected& operator=(const Injected&) = delete;
+
+ private:
+  void (*hook_)(bool);
+};
+
+TEST(OpenClFrontend, InjectedBuildFailureFallsBackToTheCpu) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(2);
+  const Setting s = settings()[0];
+  const std::vector<TestImage> want = expected(s, pairs);
+  const Injected failing(opencl::setInjectedBuildFailure);
+  OpenClFrontend frontend(s.stereo, s.median, "opencl");
+  EXPECT_TRUE(frontend.onCpu());
+  EXPECT_NE(frontend.fallbackReason().find("injected build failure"), std::string::npos)
+      << frontend.fallbackReason();
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    EXPECT_TRUE(
+        sameImage(want[i].view(),
+                  frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view()).view()));
+}
+
+TEST(OpenClFrontend, EnqueueFailureMidStreamLosesAndReordersNothing) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(4);
+  const Setting s = settings()[1];
+  const std::vector<TestImage> want = expected(s, pairs);
+  OpenClFrontend frontend(s.stereo, s.median, "opencl", 4);
+  ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+  std::vector<OpenClFrontend::Ticket> tickets;
+  tickets.push_back(frontend.submit(pairs[0].left.view(), pairs[0].right.view()));
+  tickets.push_back(frontend.submit(pairs[1].left.view(), pairs[1].right.view()));
+  {
+    const Injected failing(opencl::setInjectedEnqueueFailure);
+    tickets.push_back(frontend.submit(pairs[2].left.view(), pairs[2].right.view()));
+  }
+  EXPECT_TRUE(frontend.onCpu());
+  tickets.push_back(frontend.submit(pairs[3].left.view(), pairs[3].right.view()));
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    EXPECT_EQ(tickets[i], i);
+    EXPECT_TRUE(sameImage(want[i].view(), frontend.wait(tickets[i]).view())) << "frame " << i;
+  }
+}
+
+}  // namespace
+}  // namespace horopter::test
