@@ -1,0 +1,202 @@
+// SyntheticScene: options, head pose, caches of the static room per view;
+// see include/horopter/synthetic_scene.hpp.
+#include "horopter/synthetic_scene.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "horopter/error.hpp"
+#include "synthetic/people.hpp"
+#include "synthetic/rasteriser.hpp"
+#include "synthetic/room.hpp"
+#include "synthetic/scene_renderer.hpp"
+#include "synthetic/truth.hpp"
+
+namespace horopter::synth {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void validate(const SceneOptions& o) {
+  if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192)
+    throw Error("synthetic scene size must be between 16x16 and 8192x8192, got " +
+                std::to_string(o.width) + "x" + std::to_string(o.height));
+  if (!std::isfinite(o.baselineM) || !(o.baselineM > 0) || o.baselineM > 2)
+    throw Error("synthetic scene baselineM must be in (0, 2] metres, got " + num(o.baselineM) +
+                ": use e.g. 0.12");
+  if (!std::isfinite(o.focalPx) || o.focalPx < 0)
+    throw Error(
+        "synthetic scene focalPx must be positive (or 0 for a 60 degree field of view), got " +
+        num(o.focalPx));
+  if (!std::isfinite(o.framesPerSecond) || !(o.framesPerSecond > 0))
+    throw Error("synthetic scene framesPerSecond must be positive, got " + num(o.framesPerSecond));
+}
+
+void validate(const HeadPose& p) {
+  const double limit = 80 * kPi / 180;
+  if (!std::isfinite(p.pan) || std::abs(p.pan) > limit)
+    throw Error("head pan must be finite and within +-80 degrees (1.396 rad), got " + num(p.pan) +
+                " rad");
+  if (!std::isfinite(p.tilt) || std::abs(p.tilt) > limit)
+    throw Error("head tilt must be finite and within +-80 degrees (1.396 rad), got " + num(p.tilt) +
+                " rad");
+  if (!std::isfinite(p.vergence) || p.vergence < 0 || p.vergence >= kPi / 2)
+    throw Error("head vergence must be in [0, pi/2) rad (0 = parallel axes), got " +
+                num(p.vergence) + " rad");
+}
+
+}  // namespace
+
+// ---- SceneRenderer --------------------------------------------------------
+
+SceneRenderer::SceneRenderer(const SceneOptions& options)
+    : options_(options),
+      focal_(options.focalPx > 0 ? options.focalPx
+                                 : 0.5 * options.width / std::tan(30 * kPi / 180)),
+      cx_(0.5 * (options.width - 1)),
+      cy_(0.5 * (options.height - 1)),
+      room_(room::build(options.content == SceneContent::Full)),
+      people_(options.content == SceneContent::Full ? makePeople(options.seed, options.distractor)
+                                                    : std::vector<PersonParams>{}) {}
+
+Camera SceneRenderer::camera(const HeadPose& head, int eye) const {
+  Camera c;
+  c.rigToWorld = rotationY(head.pan) * rotationX(head.tilt);
+  c.centre = c.rigToWorld.apply(Vec3{(eye == 0 ? -0.5 : 0.5) * options_.baselineM, 0, 0});
+  c.f = focal_;
+  c.cx = cx_;
+  c.cy = cy_;
+  c.width = options_.width;
+  c.height = options_.height;
+  return c;
+}
+
+void SceneRenderer::updateStatic(const HeadPose& head) {
+  // The images depend on pan and tilt only; vergence moves the zone.
+  if (staticValid_ && head.pan == staticPan_ && head.tilt == staticTilt_) return;
+  for (int eye = 0; eye < 2; ++eye) {
+    staticLayer_[eye].reset(options_.width, options_.height);
+    synth::render(camera(head, eye), room_, staticLayer_[eye]);
+  }
+  staticPan_ = head.pan;
+  staticTilt_ = head.tilt;
+  staticValid_ = true;
+}
+
+SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
+  if (frameIndex < 0)
+    throw Error("synthetic scene frame index must be >= 0, got " + std::to_string(frameIndex));
+  updateStatic(head);
+  const double t = frameIndex / options_.framesPerSecond;
+
+  std::vector<PersonPose> poses;
+  std::vector<Primitive> prims;
+  for (const PersonParams& p : people_) {
+    poses.push_back(poseAt(p, t));
+    addPrimitives(p, poses.back(), prims);
+  }
+  Layer layers[2];
+  for (int eye = 0; eye < 2; ++eye) {
+    layers[eye].colour = staticLayer_[eye].colour.clone();
+    layers[eye].depth = staticLayer_[eye].depth.clone();
+    if (!prims.empty()) synth::render(camera(head, eye), prims, layers[eye]);
+  }
+
+  SyntheticFrame frame;
+  frame.left = layers[0].colour;
+  frame.right = layers[1].colour;
+  FrameTruth& truth = frame.truth;
+  truth.index = frameIndex;
+  truth.timeS = t;
+  truth.head = head;
+  const ZoneCircle zone(options_.baselineM, head.vergence);
+  truth.fixationDistanceM = zone.fixationDistance();
+  const Camera left = camera(head, 0);
+  pixelTruth(left, layers[0], layers[1], options_.baselineM, zone, truth);
+  for (std::size_t i = 0; i < people_.size(); ++i)
+    truth.people.push_back(
+        personTruth(left, layers[0], options_.baselineM, zone, people_[i].id, poses[i]));
+  return frame;
+}
+
+// ---- public API -------------------------------------------------------------
+
+double vergenceForDistance(double baselineM, double distanceM) {
+  if (!(baselineM > 0) || !(distanceM > 0) || !std::isfinite(baselineM))
+    throw Error("vergenceForDistance needs a positive baseline and distance, got " +
+                num(baselineM) + " and " + num(distanceM));
+  return 2 * std::atan(0.5 * baselineM / distanceM);
+}
+
+const char* movementName(Movement movement) {
+  switch (movement) {
+    case Movement::None:
+      return "none";
+    case Movement::Circle:
+      return "circle";
+    case Movement::Pointing:
+      return "pointing";
+    case Movement::WaveLeft:
+      return "wave-left";
+    case Movement::WaveRight:
+      return "wave-right";
+    case Movement::SagittalWave:
+      return "sagittal-wave";
+    case Movement::ByeBye:
+      return "bye-bye";
+  }
+  return "unknown";
+}
+
+std::vector<TextureSource> textureSources() {
+  return loadedTextureSources();
+}
+
+SyntheticScene::SyntheticScene(const SceneOptions& options) : options_(options) {
+  validate(options_);
+  validate(options_.initialHead);
+  head_ = options_.initialHead;
+  renderer_ = std::make_unique<SceneRenderer>(options_);
+}
+
+SyntheticScene::~SyntheticScene() = default;
+SyntheticScene::SyntheticScene(SyntheticScene&&) noexcept = default;
+SyntheticScene& SyntheticScene::operator=(SyntheticScene&&) noexcept = default;
+
+SyntheticFrame SyntheticScene::render(int frameIndex) {
+  return renderer_->render(frameIndex, head_);
+}
+
+void SyntheticScene::commandHead(const HeadPose& pose) {
+  validate(pose);
+  head_ = pose;
+}
+
+HeadPose SyntheticScene::head() const {
+  return head_;
+}
+double SyntheticScene::focalPx() const {
+  return renderer_->focalPx();
+}
+double SyntheticScene::baselineM() const {
+  return options_.baselineM;
+}
+double SyntheticScene::cx() const {
+  return renderer_->cx();
+}
+double SyntheticScene::cy() const {
+  return renderer_->cy();
+}
+const SceneOptions& SyntheticScene::options() const {
+  return options_;
+}
+
+}  // namespace horopter::synth

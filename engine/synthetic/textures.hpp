@@ -1,0 +1,58 @@
+// The scene's textures: real photographs and material images from Debian
+// packages (python3-skimage's data, opencv-doc's samples), loaded once per
+// process at run time; a missing file is replaced by a procedural texture
+// with one warning on stderr.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <string>
+#include <vector>
+
+#include "horopter/synthetic_scene.hpp"
+
+namespace horopter::synth {
+
+// An image with its mipmaps, BGR as floats in [0, 255]. Sampling is
+// trilinear: a surface far away shows the blurred texture instead of aliasing
+// noise, which would differ between the two views.
+class Texture {
+ public:
+  Texture() = default;
+  explicit Texture(const cv::Mat& bgr8);
+
+  int width() const { return levels_.empty() ? 0 : levels_[0].cols; }
+  int height() const { return levels_.empty() ? 0 : levels_[0].rows; }
+  // (u, v) in texels of the full-size image, the texture repeating;
+  // `footprint`: texels covered by one pixel (chooses the mipmap level).
+  cv::Vec3f sampleWrap(double u, double v, double footprint) const;
+  // As sampleWrap, but outside the image the border texel repeats.
+  cv::Vec3f sampleClamp(double u, double v, double footprint) const;
+
+ private:
+  template <bool Wrap>
+  cv::Vec3f sampleLevel(int level, double u, double v) const;
+  template <bool Wrap>
+  cv::Vec3f sample(double u, double v, double footprint) const;
+  std::vector<cv::Mat> levels_;  // CV_32FC3, each half the previous
+};
+
+enum class TextureId {
+  Brick,      // walls
+  Gravel,     // floor
+  Grass,      // a rug / plant box
+  Wood,       // furniture: procedural, skin-coloured on purpose
+  Noise,      // fine neutral noise: ceiling, clothes, skin
+  Face,       // the main person's face (a crop of a real photograph)
+  FaceOther,  // the distractor's face (the same photograph, mirrored)
+  PosterA,    // posters: real photographs, some skin-coloured or with faces
+  PosterB,
+  PosterC,
+  PosterD,
+  Count
+};
+
+const Texture& texture(TextureId id);
+std::vector<TextureSource> loadedTextureSources();
+
+}  // namespace horopter::synth
