@@ -35,18 +35,25 @@ struct Primitive {
   // Box/Room: one per face, index 2 * axis + (max face ? 1 : 0); others use [0].
   Material materials[6];
 
+  // Per-view constants of the ray tests, set by prepare() for one ray origin.
+  Vec3 preVec;
+  double pre0 = 0, pre1 = 0, pre2 = 0;
+
   // The world-space bounding box (for the screen rectangle).
   void bounds(Vec3& lo, Vec3& hi) const;
 };
+
+// Computes what the ray tests of `p` share for every ray from `origin`;
+// intersect() then needs rays starting there.
+void prepare(Primitive& p, Vec3 origin);
 
 Primitive makeBox(Vec3 lo, Vec3 hi, const Material& material);
 Primitive makeEllipsoid(Vec3 centre, Vec3 radii, double yaw, const Material& material);
 Primitive makeCapsule(Vec3 a, Vec3 b, double radius, const Material& material);
 
-// A ray o + t d; d is not unit length (its rig z is 1), dn = d / |d|.
+// A ray o + t d; d is not unit length: its rig z is 1, so t is the rig depth.
 struct Ray {
-  Vec3 o, d, dn;
-  double length = 1;  // |d|
+  Vec3 o, d;
 };
 
 struct Hit {
@@ -57,7 +64,7 @@ struct Hit {
   bool back = false;    // Face mapping: the back of the head
 };
 
-// The nearest hit with tMin < t < tMax, or false.
+// The nearest hit with tMin < t < tMax, or false; `p` prepared for ray.o.
 bool intersect(const Primitive& p, const Ray& ray, double tMax, Hit& hit);
 
 // The colour (BGR floats) of a hit, lit by a fixed directional light; the

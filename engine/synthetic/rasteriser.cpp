@@ -1,11 +1,14 @@
 // The per-pixel ray caster; see rasteriser.hpp.
 #include "synthetic/rasteriser.hpp"
 
+#include "synthetic/intersections.hpp"
+
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace horopter::synth {
 
@@ -14,8 +17,6 @@ Ray Camera::ray(double x, double y) const {
   Ray r;
   r.o = centre;
   r.d = rigToWorld.apply(dRig);
-  r.length = norm(dRig);
-  r.dn = (1.0 / r.length) * r.d;
   return r;
 }
 
@@ -46,37 +47,107 @@ void Layer::reset(int width, int height) {
   depth.setTo(cv::Scalar::all(std::numeric_limits<double>::infinity()));
 }
 
-void render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer) {
+namespace {
+
+// A capsule's outline on screen lies within `radius` pixels of the segment
+// between its projected ends (perspective keeps the axis straight). The
+// radius allows for the stretch of a sphere's image off the optical axis
+// (1 / cos^2 of the angle: 1.6 at the corners of a 60 degree view).
+struct ScreenCapsule {
+  bool use = false;
+  double x0 = 0, y0 = 0, dx = 0, dy = 0, len2 = 0, radius2 = 0;
+
+  bool misses(double x, double y) const {
+    const double px = x - x0, py = y - y0;
+    const double s = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0, 1.0) : 0.0;
+    const double ex = px - s * dx, ey = py - s * dy;
+    return ex * ex + ey * ey > radius2;
+  }
+};
+
+ScreenCapsule screenCapsule(const Camera& camera, const Primitive& p) {
+  ScreenCapsule c;
+  if (p.shape != Primitive::Shape::Capsule) return c;
+  const Vec3 a = camera.toCamera(p.a), b = camera.toCamera(p.b);
+  const double zMin = std::min(a.z, b.z) - p.radius;
+  if (zMin < p.radius) return c;  // close to the camera: the rectangle alone
+  c.use = true;
+  c.x0 = camera.cx + camera.f * a.x / a.z;
+  c.y0 = camera.cy + camera.f * a.y / a.z;
+  c.dx = camera.cx + camera.f * b.x / b.z - c.x0;
+  c.dy = camera.cy + camera.f * b.y / b.z - c.y0;
+  c.len2 = c.dx * c.dx + c.dy * c.dy;
+  const double r = 1.7 * camera.f * p.radius / zMin + 2;
+  c.radius2 = r * r;
+  return c;
+}
+
+}  // namespace
+
+cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer) {
+  std::vector<Primitive> primitives = unprepared;
+  for (Primitive& p : primitives)
+    prepare(p, camera.centre);
   std::vector<cv::Rect> rects;
+  std::vector<ScreenCapsule> capsules;
   rects.reserve(primitives.size());
+  capsules.reserve(primitives.size());
+  cv::Rect all;
   for (const Primitive& p : primitives) {
     Vec3 lo, hi;
     p.bounds(lo, hi);
     rects.push_back(p.shape == Primitive::Shape::Room ? cv::Rect(0, 0, camera.width, camera.height)
                                                       : camera.screenRect(lo, hi));
+    capsules.push_back(screenCapsule(camera, p));
+    if (!rects.back().empty()) all = all.empty() ? rects.back() : (all | rects.back());
   }
   const double pixelMetres = 1.0 / camera.f;
   // A surface is replaced only by a strictly nearer one; each row belongs to
   // one thread, so the split does not change the result.
   cv::parallel_for_(cv::Range(0, camera.height), [&](const cv::Range& rows) {
     for (std::size_t i = 0; i < primitives.size(); ++i) {
-      const cv::Rect& r = rects[i];
-      const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
-      for (int y = y0; y < y1; ++y) {
-        auto* colour = layer.colour.ptr<cv::Vec3b>(y);
-        auto* depth = layer.depth.ptr<double>(y);
-        for (int x = r.x; x < r.x + r.width; ++x) {
-          const Ray ray = camera.ray(x, y);
-          Hit hit;
-          if (!intersect(primitives[i], ray, depth[x], hit)) continue;
-          const cv::Vec3f c = shade(primitives[i], ray, hit, pixelMetres);
-          depth[x] = hit.t;
-          colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                                cv::saturate_cast<uchar>(c[2]));
+      const Primitive& p = primitives[i];
+      // One pixel loop per shape, so that its ray test is inlined.
+      auto loop = [&](auto test) {
+        const cv::Rect& r = rects[i];
+        const ScreenCapsule& capsule = capsules[i];
+        const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
+        for (int y = y0; y < y1; ++y) {
+          auto* colour = layer.colour.ptr<cv::Vec3b>(y);
+          auto* depth = layer.depth.ptr<double>(y);
+          for (int x = r.x; x < r.x + r.width; ++x) {
+            if (capsule.use && capsule.misses(x, y)) continue;
+            const Ray ray = camera.ray(x, y);
+            Hit hit;
+            if (!test(p, ray, depth[x], hit)) continue;
+            const cv::Vec3f c = shade(p, ray, hit, pixelMetres);
+            depth[x] = hit.t;
+            colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
+                                  cv::saturate_cast<uchar>(c[2]));
+          }
         }
+      };
+      switch (p.shape) {
+        case Primitive::Shape::Box:
+          loop([](auto&&... a) { return detail::intersectBox(std::forward<decltype(a)>(a)...); });
+          break;
+        case Primitive::Shape::Room:
+          loop([](auto&&... a) { return detail::intersectRoom(std::forward<decltype(a)>(a)...); });
+          break;
+        case Primitive::Shape::Ellipsoid:
+          loop([](auto&&... a) {
+            return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
+          });
+          break;
+        case Primitive::Shape::Capsule:
+          loop([](auto&&... a) {
+            return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
+          });
+          break;
       }
     }
   });
+  return all;
 }
 
 }  // namespace horopter::synth

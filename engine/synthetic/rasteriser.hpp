@@ -35,9 +35,9 @@ struct Layer {
   void reset(int width, int height);
 };
 
-// Draws `primitives` over `layer` where they are nearer than what it holds.
-// Rows are split across OpenCV's threads; the result does not depend on the
-// split.
-void render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer);
+// Draws `primitives` over `layer` where they are nearer than what it holds;
+// returns the union of the pixel rectangles it looked at. Rows are split
+// across OpenCV's threads; the result does not depend on the split.
+cv::Rect render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer);
 
 }  // namespace horopter::synth

@@ -25,14 +25,21 @@ class SceneRenderer {
 
  private:
   void updateStatic(const HeadPose& head);
+  void updateStaticTruth(const HeadPose& head);
 
   SceneOptions options_;
   double focal_, cx_, cy_;
   std::vector<Primitive> room_;
   std::vector<PersonParams> people_;
   Layer staticLayer_[2];
+  cv::Mat frameDepth_[2];  // the people drawn over the room's depth
   bool staticValid_ = false;
   double staticPan_ = 0, staticTilt_ = 0;
+  // The room's pixel truth for the cached layers and one vergence.
+  FrameTruth staticTruth_;
+  bool staticTruthValid_ = false;
+  double staticTruthVergence_ = 0;
+  double maxStaticDisparityPx_ = 0;  // of the nearest room surface, left view
 };
 
 }  // namespace horopter::synth

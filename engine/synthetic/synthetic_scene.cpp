@@ -89,12 +89,27 @@ void SceneRenderer::updateStatic(const HeadPose& head) {
   staticPan_ = head.pan;
   staticTilt_ = head.tilt;
   staticValid_ = true;
+  staticTruthValid_ = false;
+  double minDepth = 0;
+  cv::minMaxLoc(staticLayer_[0].depth, &minDepth);
+  maxStaticDisparityPx_ = focal_ * options_.baselineM / minDepth;
+}
+
+void SceneRenderer::updateStaticTruth(const HeadPose& head) {
+  if (staticTruthValid_ && head.vergence == staticTruthVergence_) return;
+  allocatePixelTruth(options_.width, options_.height, staticTruth_);
+  pixelTruth(camera(head, 0), staticLayer_[0], staticLayer_[1], options_.baselineM,
+             ZoneCircle(options_.baselineM, head.vergence),
+             cv::Rect(0, 0, options_.width, options_.height), staticTruth_);
+  staticTruthVergence_ = head.vergence;
+  staticTruthValid_ = true;
 }
 
 SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   if (frameIndex < 0)
     throw Error("synthetic scene frame index must be >= 0, got " + std::to_string(frameIndex));
   updateStatic(head);
+  updateStaticTruth(head);
   const double t = frameIndex / options_.framesPerSecond;
 
   std::vector<PersonPose> poses;
@@ -104,10 +119,13 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
     addPrimitives(p, poses.back(), prims);
   }
   Layer layers[2];
+  cv::Rect drawn[2];
   for (int eye = 0; eye < 2; ++eye) {
     layers[eye].colour = staticLayer_[eye].colour.clone();
-    layers[eye].depth = staticLayer_[eye].depth.clone();
-    if (!prims.empty()) synth::render(camera(head, eye), prims, layers[eye]);
+    // The depth stays inside the renderer: reuse its buffer.
+    staticLayer_[eye].depth.copyTo(frameDepth_[eye]);
+    layers[eye].depth = frameDepth_[eye];
+    if (!prims.empty()) drawn[eye] = synth::render(camera(head, eye), prims, layers[eye]);
   }
 
   SyntheticFrame frame;
@@ -120,7 +138,20 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   const ZoneCircle zone(options_.baselineM, head.vergence);
   truth.fixationDistanceM = zone.fixationDistance();
   const Camera left = camera(head, 0);
-  pixelTruth(left, layers[0], layers[1], options_.baselineM, zone, truth);
+  // The room's truth comes from the cache; only pixels the people may have
+  // changed are computed again: those drawn in the left view, and those
+  // whose match in the right view (x - d, with d at most the nearest room
+  // surface's disparity) fell where people were drawn there.
+  truth.disparity = staticTruth_.disparity.clone();
+  truth.inside = staticTruth_.inside.clone();
+  truth.occluded = staticTruth_.occluded.clone();
+  cv::Rect dirty = drawn[0];
+  if (!drawn[1].empty()) {
+    cv::Rect shifted = drawn[1];
+    shifted.width += static_cast<int>(std::ceil(maxStaticDisparityPx_)) + 2;
+    dirty = dirty.empty() ? shifted : (dirty | shifted);
+  }
+  pixelTruth(left, layers[0], layers[1], options_.baselineM, zone, dirty, truth);
   for (std::size_t i = 0; i < people_.size(); ++i)
     truth.people.push_back(
         personTruth(left, layers[0], options_.baselineM, zone, people_[i].id, poses[i]));

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 
 #include "synthetic/rng.hpp"
@@ -26,6 +28,36 @@ Texture::Texture(const cv::Mat& bgr8) {
   }
 }
 
+namespace {
+
+// Texture coordinates stay far inside the int range: scenes are metres wide
+// and textures a few hundred texels per metre.
+inline int fastFloor(double v) {
+  const int i = static_cast<int>(v);
+  return v < i ? i - 1 : i;
+}
+
+// log2 within 0.09 without a library call: the exponent plus the mantissa's
+// linear part; plenty to choose a mipmap level (monotonic and continuous).
+inline double fastLog2(double v) {
+  int e = 0;
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  e = static_cast<int>((bits >> 52) & 0x7FF) - 1023;
+  bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;  // mantissa in [1, 2)
+  double m;
+  std::memcpy(&m, &bits, sizeof m);
+  return e + (m - 1);
+}
+
+inline int wrapIndex(int i, int n) {
+  if ((n & (n - 1)) == 0) return i & (n - 1);  // power of two (two's complement)
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+}  // namespace
+
 template <bool Wrap>
 cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
   const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
@@ -37,16 +69,14 @@ cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
   int x0, y0, x1, y1;
   float fx, fy;
   if constexpr (Wrap) {
-    const double fu = std::floor(u), fv = std::floor(v);
-    // The floor of a finite double fits a long long for any sane scene size.
-    x0 = static_cast<int>(static_cast<long long>(fu) % w);
-    y0 = static_cast<int>(static_cast<long long>(fv) % h);
-    if (x0 < 0) x0 += w;
-    if (y0 < 0) y0 += h;
+    // floor without a libm call (no SSE4.1 in the baseline build)
+    const int iu = fastFloor(u), iv = fastFloor(v);
+    fx = static_cast<float>(u - iu);
+    fy = static_cast<float>(v - iv);
+    x0 = wrapIndex(iu, w);
+    y0 = wrapIndex(iv, h);
     x1 = x0 + 1 == w ? 0 : x0 + 1;
     y1 = y0 + 1 == h ? 0 : y0 + 1;
-    fx = static_cast<float>(u - fu);
-    fy = static_cast<float>(v - fv);
   } else {
     u = std::clamp(u, 0.0, w - 1.0);
     v = std::clamp(v, 0.0, h - 1.0);
@@ -67,7 +97,7 @@ cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
 template <bool Wrap>
 cv::Vec3f Texture::sample(double u, double v, double footprint) const {
   const int last = static_cast<int>(levels_.size()) - 1;
-  const double lod = footprint > 1 ? std::log2(footprint) : 0.0;
+  const double lod = footprint > 1 ? fastLog2(footprint) : 0.0;
   if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
   if (lod >= last) return sampleLevel<Wrap>(last, u, v);
   const int l0 = static_cast<int>(lod);

@@ -25,31 +25,38 @@ bool ZoneCircle::inside(double x, double z) const {
   return x * x + z * z - 2 * z * centreZ_ < halfBaseline_ * halfBaseline_;
 }
 
+void allocatePixelTruth(int width, int height, FrameTruth& truth) {
+  truth.disparity.create(height, width, CV_16SC1);
+  truth.inside.create(height, width, CV_8UC1);
+  truth.occluded.create(height, width, CV_8UC1);
+}
+
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
-                double baselineM, const ZoneCircle& zone, FrameTruth& truth) {
-  const int w = left.width, h = left.height;
-  truth.disparity.create(h, w, CV_16SC1);
-  truth.inside.create(h, w, CV_8UC1);
-  truth.occluded.create(h, w, CV_8UC1);
+                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth) {
+  const int w = left.width;
+  rect &= cv::Rect(0, 0, left.width, left.height);
+  if (rect.empty()) return;
   const double fb16 = 16.0 * left.f * baselineM;
   const double fb = left.f * baselineM;
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  cv::parallel_for_(cv::Range(rect.y, rect.y + rect.height), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y) {
       const auto* zl = leftLayer.depth.ptr<double>(y);
       const auto* zr = rightLayer.depth.ptr<double>(y);
       auto* disp = truth.disparity.ptr<std::int16_t>(y);
       auto* in = truth.inside.ptr<std::uint8_t>(y);
       auto* occ = truth.occluded.ptr<std::uint8_t>(y);
-      for (int x = 0; x < w; ++x) {
+      for (int x = rect.x; x < rect.x + rect.width; ++x) {
         const double z = zl[x];
-        disp[x] = static_cast<std::int16_t>(std::min(32767.0, std::round(fb16 / z)));
+        // round() by hand (halves away from zero; the value is positive):
+        // without SSE4.1 std::round is a library call.
+        disp[x] = static_cast<std::int16_t>(std::min(32767.0, fb16 / z + 0.5));
         // The pixel's point in the rig frame (the left camera at x = -B/2).
         const double px = -0.5 * baselineM + (x - left.cx) * z / left.f;
         in[x] = zone.inside(px, z) ? 255 : 0;
         // Seen in the right view when the right pixels around x - d look at
         // a surface at (nearly) the same depth.
         const double xr = x - fb / z;
-        const int x0 = static_cast<int>(std::floor(xr));
+        const int x0 = xr >= 0 ? static_cast<int>(xr) : (xr > -1 ? -1 : -2);  // floor, enough here
         bool seen = false;
         for (int xi = x0; xi <= x0 + 1; ++xi)
           if (xi >= 0 && xi < w && std::abs(zr[xi] - z) <= 0.02 * z) seen = true;

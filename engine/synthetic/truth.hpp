@@ -27,9 +27,12 @@ class ZoneCircle {
   double halfBaseline_, fixation_, centreZ_, radius_;
 };
 
-// disparity, inside and occluded of `truth`, from the two views' depths.
+// disparity, inside and occluded of `truth` inside `rect` (the maps must
+// already have the image's size and types), from the two views' depths.
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
-                double baselineM, const ZoneCircle& zone, FrameTruth& truth);
+                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth);
+// Allocates the three maps of `truth` for a width x height image.
+void allocatePixelTruth(int width, int height, FrameTruth& truth);
 
 // One person's truth in the left view (`leftLayer` decides visibility).
 PersonTruth personTruth(const Camera& left, const Layer& leftLayer, double baselineM,
