@@ -12,5 +12,6 @@ int runEvalStereo(Args& args);
 int runDevices(Args& args);
 int runCalibrate(Args& args);
 int runRectify(Args& args);
+int runGeometry(Args& args);
 
 }  // namespace horopter::cli

@@ -19,7 +19,8 @@ const char* kUsage =
     "  eval-stereo   accuracy against ground truth, cv::StereoBM beside us (--peer opencv)\n"
     "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n"
     "  calibrate     stereo calibration from chessboard views -> calib.yml (OpenCV YAML)\n"
-    "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n";
+    "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n"
+    "  geometry      the zone of interaction of a calibrated head for a fixation (+ top-down PNG)\n";
 
 }  // namespace
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     if (command == "devices") return runDevices(args);
     if (command == "calibrate") return runCalibrate(args);
     if (command == "rectify") return runRectify(args);
+    if (command == "geometry") return runGeometry(args);
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
     return 2;
   } catch (const horopter::Error& e) {
