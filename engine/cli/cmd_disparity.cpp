@@ -111,40 +111,34 @@ void parseCommon(Args& args, PairJob& job) {
 
 int runDisparity(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << "Usage: horopter disparity LEFT RIGHT [-o DIR] [options]\n\n"
+    std::cout << "Usage: horopter disparity LEFT RIGHT [-o DIR] [options]\n"
+                 "       horopter disparity --example [-o DIR] [options]\n\n"
                  "Runs the front end (x-Sobel prefilter, SAD matching, left-right check,\n"
-                 "speckle filter, hole-filling median, horopter mask) on a rectified pair.\n\n"
+                 "speckle filter, hole-filling median, horopter mask) on a rectified pair.\n"
+                 "--example takes Middlebury's Aloe pair from Debian's opencv-doc (1282x1110,\n"
+                 "disparities 43..211) with 224 disparities unless --num-disparities is given.\n\n"
               << stereoFlagsHelp(StereoParams{}, MedianParams{}) << kPairHelpTail;
     return 0;
   }
   PairJob job;
+  const bool example = args.flag("--example");
+  if (example) job.stereo.numDisparities = 224;  // Aloe's disparities reach 211 px
   parseCommon(args, job);
   const auto files = args.positionals();
   args.finish("disparity");
+  if (example) {
+    if (!files.empty()) throw Error("--example takes no image paths: drop them or --example");
+    const StereoPairFiles pair = defaultStereoPair();
+    std::cerr << "horopter: default input " << pair.left << " + " << pair.right << "\n";
+    job.left = pair.left;
+    job.right = pair.right;
+    return runPair(job);
+  }
   if (files.size() != 2)
     throw Error("horopter disparity needs LEFT and RIGHT image paths, got " +
                 std::to_string(files.size()) + " path(s): see horopter disparity --help");
   job.left = files[0];
   job.right = files[1];
-  return runPair(job);
-}
-
-int runMainJob(Args& args) {
-  if (args.flag("--help") || args.flag("-h")) {
-    std::cout << "Usage: horopter run [-o DIR] [options]\n\n"
-                 "The main job on the built-in default input: Middlebury's Aloe pair from\n"
-                 "Debian's opencv-doc (1282x1110, disparities 43..211), with 224 disparities.\n\n"
-              << stereoFlagsHelp(StereoParams{}, MedianParams{}) << kPairHelpTail;
-    return 0;
-  }
-  PairJob job;
-  job.stereo.numDisparities = 224;  // Aloe's disparities reach 211 px
-  parseCommon(args, job);
-  args.finish("run");
-  const StereoPairFiles pair = defaultStereoPair();
-  std::cerr << "horopter: default input " << pair.left << " + " << pair.right << "\n";
-  job.left = pair.left;
-  job.right = pair.right;
   return runPair(job);
 }
 

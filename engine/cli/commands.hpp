@@ -6,7 +6,7 @@
 
 namespace horopter::cli {
 
-int runMainJob(Args& args);
+int runPipeline(Args& args);
 int runDisparity(Args& args);
 int runEvalStereo(Args& args);
 int runDevices(Args& args);

@@ -14,13 +14,16 @@ const char* kUsage =
     "Horopter: a stereo vision engine that keeps only what lies inside the robot's zone\n"
     "of interaction (the Vieth-Mueller circle through both cameras and the fixation point).\n\n"
     "Commands:\n"
-    "  run           the main job on the built-in default input (the Aloe pair) -> out/\n"
+    "  run           the frame pipeline on the built-in synthetic scene (or cameras, files)\n"
+    "                -> out/ (annotated video, stills, summary)\n"
     "  disparity     disparity, cleanup, median and horopter mask of a rectified pair\n"
+    "                (--example: Middlebury's Aloe pair from opencv-doc)\n"
     "  eval-stereo   accuracy against ground truth, cv::StereoBM beside us (--peer opencv)\n"
     "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n"
     "  calibrate     stereo calibration from chessboard views -> calib.yml (OpenCV YAML)\n"
     "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n"
-    "  geometry      the zone of interaction of a calibrated head for a fixation (+ top-down PNG)\n";
+    "  geometry      the zone of interaction of a calibrated head for a fixation (+ top-down "
+    "PNG)\n";
 
 }  // namespace
 
@@ -34,7 +37,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   Args args(argc, argv, 2);
   try {
-    if (command == "run") return runMainJob(args);
+    if (command == "run") return runPipeline(args);
     if (command == "disparity") return runDisparity(args);
     if (command == "eval-stereo") return runEvalStereo(args);
     if (command == "devices") return runDevices(args);

@@ -1,0 +1,39 @@
+// Capture sources that read files (internal; open them with openSource).
+#pragma once
+
+#include <filesystem>
+#include <opencv2/videoio.hpp>
+#include <string>
+#include <vector>
+
+#include "horopter/pipeline.hpp"
+
+namespace horopter::capture {
+
+// A folder of left/right images, paired in sorted order.
+class DirectorySource : public FrameSource {
+ public:
+  explicit DirectorySource(const std::string& dir);
+  std::string name() const override { return "dir:" + dir_; }
+  bool next(Frame& frame) override;
+
+ private:
+  std::string dir_;
+  std::vector<std::filesystem::path> left_, right_;
+  std::size_t next_ = 0;
+};
+
+// Two video files read frame by frame; they must end together.
+class VideoPairSource : public FrameSource {
+ public:
+  VideoPairSource(const std::string& leftPath, const std::string& rightPath);
+  std::string name() const override { return "video"; }
+  bool next(Frame& frame) override;
+
+ private:
+  std::string leftPath_, rightPath_;
+  cv::VideoCapture left_, right_;
+  std::int64_t frames_ = 0;
+};
+
+}  // namespace horopter::capture

@@ -1,0 +1,305 @@
+// `horopter run`: the whole pipeline on a source (the synthetic scene by
+// default), with an annotated video, stills and a summary in out/.
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <opencv2/highgui.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "commands.hpp"
+#include "horopter/capture.hpp"
+#include "horopter/error.hpp"
+#include "horopter/geometry.hpp"
+#include "horopter/vision_stages.hpp"
+#include "run_annotation.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+
+extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+
+const char* kRunHelp =
+    "Usage: horopter run [options]\n\n"
+    "Runs the frame pipeline (capture -> rectify -> disparity -> mask -> annotate) with\n"
+    "several frames in flight, and writes to the output folder: run.avi (annotated video:\n"
+    "left image with the zone's ROI, disparity colour map, the image inside the horopter),\n"
+    "still_*.png and summary.json. With no options: 300 frames of the built-in synthetic\n"
+    "scene. Ctrl-C stops capture and finishes the frames in flight.\n\n"
+    "Source:\n"
+    "  --source S         synthetic (default), dir:PATH, video:LEFT,RIGHT,\n"
+    "                     camera:/dev/videoA,/dev/videoB, sbs:/dev/videoN (side by side)\n"
+    "  --frames N         stop after N frames (synthetic default 300; others: the whole input)\n"
+    "  --seed S           the synthetic scene's seed (default 1)\n"
+    "  --size WxH         synthetic scene or camera size (default 640x480 / driver's)\n"
+    "  --fps F            camera rate (default the driver's)\n"
+    "  --max-skew-ms T    two cameras: most time between paired frames (default 15)\n"
+    "Zone (sources other than synthetic, which knows its rig):\n"
+    "  --fixation-disparity D  disparity (px) of the fixation point on the centre column\n"
+    "                          (default: the middle of the search range)\n"
+    "  --focal-px F            focal length of the rectified pair (default: image width)\n"
+    "Scheduling:\n"
+    "  --backend B        scalar, avx2, opencl..., auto (default auto)\n"
+    "  --threads N        threads of the front end's pool (default: all cores)\n"
+    "  --in-flight K      frames in flight, 1..64 (default 3)\n"
+    "  --live             live mode: capture never waits, stale frames are dropped\n"
+    "                     (default for cameras; offline, every frame in order, otherwise)\n"
+    "  --until STAGE      run only up to rectify, disparity or mask (for profiling; no\n"
+    "                     annotation or video)\n"
+    "Output:\n"
+    "  -o, --out DIR      output folder (default out)\n"
+    "  --trace FILE       Chrome trace events (open in Perfetto or chrome://tracing)\n"
+    "  --json             print the summary as one JSON object on stdout\n"
+    "  --display          show the annotated frames in a window (needs a display)\n"
+    "  --no-video         do not write run.avi\n\n";
+
+struct RunJob {
+  std::string source = "synthetic";
+  CaptureOptions capture;
+  bool framesGiven = false;
+  int frames = 300;
+  StereoParams stereo;
+  MedianParams median;
+  std::string backend = "auto";
+  int threads = 1;
+  int inFlight = 3;
+  bool live = false, liveGiven = false;
+  std::string until;
+  std::string outDir = "out";
+  std::string trace;
+  bool json = false, display = false, video = true;
+  std::optional<double> fixationDisparity, focalPx;
+};
+
+void parseSize(const std::string& text, int& width, int& height) {
+  if (std::sscanf(text.c_str(), "%dx%d", &width, &height) != 2 || width < 16 || height < 16 ||
+      width > 16384 || height > 16384)
+    throw Error("--size must be WxH with both between 16 and 16384, got '" + text + "'");
+}
+
+RunJob parseRun(Args& args) {
+  RunJob job;
+  job.source = args.stringValue("--source", job.source);
+  if (auto frames = args.value("--frames")) {
+    job.frames = std::stoi(*frames);
+    if (job.frames < 1) throw Error("--frames must be >= 1, got " + *frames);
+    job.framesGiven = true;
+  }
+  job.capture.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
+  if (auto size = args.value("--size")) {
+    parseSize(*size, job.capture.width, job.capture.height);
+    job.capture.scene.width = job.capture.width;
+    job.capture.scene.height = job.capture.height;
+  }
+  job.capture.fps = args.doubleValue("--fps", 0);
+  job.capture.maxSkewMs = args.doubleValue("--max-skew-ms", job.capture.maxSkewMs);
+  job.stereo = parseStereoFlags(args, job.stereo);
+  job.median = parseMedianFlags(args, job.median);
+  job.backend = args.stringValue("--backend", job.backend);
+  job.threads = parseThreads(args);
+  job.inFlight = args.intValue("--in-flight", job.inFlight);
+  job.liveGiven = job.live = args.flag("--live");
+  job.until = args.stringValue("--until", "");
+  if (!job.until.empty() && job.until != "rectify" && job.until != "disparity" &&
+      job.until != "mask")
+    throw Error("--until takes rectify, disparity or mask, got '" + job.until + "'");
+  job.outDir = args.stringValue("-o", args.stringValue("--out", job.outDir));
+  job.trace = args.stringValue("--trace", "");
+  job.json = args.flag("--json");
+  job.display = args.flag("--display");
+  job.video = !args.flag("--no-video");
+  job.fixationDisparity = args.optionalDouble("--fixation-disparity");
+  job.focalPx = args.optionalDouble("--focal-px");
+  for (const auto& v : {job.fixationDisparity, job.focalPx})
+    if (v && !(*v > 0 && std::isfinite(*v)))
+      throw Error("--fixation-disparity and --focal-px must be positive numbers");
+  args.finish("run");
+  const bool camera = job.source.rfind("camera:", 0) == 0 || job.source.rfind("sbs:", 0) == 0;
+  if (camera && !job.liveGiven) job.live = true;
+  job.capture.frames = job.frames;
+  return job;
+}
+
+// Thresholds from the synthetic scene's truth: its rig and the head's
+// vergence when the frame was rendered.
+ThresholdFunction syntheticThresholds(const synth::SyntheticScene& scene) {
+  RectifiedGeometry g;
+  g.focalPx = scene.focalPx();
+  g.cx = scene.cx();
+  g.cy = scene.cy();
+  g.baseline = scene.baselineM();
+  return [g](const Frame& f, std::vector<std::int16_t>& out) {
+    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!truth) throw Error("a synthetic frame without its truth");
+    if (!(truth->head.vergence > 1e-9)) {
+      // Fixation at infinity: the zone is everything in front (d > 0).
+      std::fill(out.begin(), out.end(), std::int16_t{1});
+      return;
+    }
+    const ViethMuellerCircle circle =
+        viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence));
+    horopterThresholds(g, circle, out);
+  };
+}
+
+// Thresholds for an uncalibrated rectified source: the fixation point is
+// given by its disparity on the centre column.
+ThresholdFunction disparityThresholds(const RunJob& job) {
+  const double fixation =
+      job.fixationDisparity.value_or(job.stereo.minDisparity + job.stereo.numDisparities / 2.0);
+  if (fixation <= 0)
+    throw Error("the middle of the search range is not in front of the cameras: pass "
+                "--fixation-disparity D with D > 0");
+  const std::optional<double> focal = job.focalPx;
+  return [fixation, focal](const Frame& f, std::vector<std::int16_t>& out) {
+    RectifiedGeometry g;
+    g.focalPx = focal.value_or(f.disparity.cols);
+    g.cx = (f.disparity.cols - 1) / 2.0;
+    g.cy = (f.disparity.rows - 1) / 2.0;
+    g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
+    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
+  };
+}
+
+// Annotates, shows and writes each finished frame; draws the progress bar.
+class Output {
+ public:
+  Output(const RunJob& job, std::int64_t expected) : job_(job), expected_(expected) {
+    std::filesystem::create_directories(job.outDir);
+    tty_ = isatty(STDERR_FILENO) && !job.json;
+    start_ = SteadyClock::now();
+  }
+  ~Output() {
+    if (tty_ && shown_) std::cerr << "\n";
+  }
+
+  void operator()(const Frame& f) {
+    ++done_;
+    const double seconds = std::chrono::duration<double>(SteadyClock::now() - start_).count();
+    const double fps = seconds > 0 ? static_cast<double>(done_) / seconds : 0;
+    if (job_.until.empty()) {
+      const cv::Mat view = annotateFrame(f, job_.stereo, fps);
+      if (job_.video) writeVideo(view);
+      if (f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_)
+        cv::imwrite(job_.outDir + "/still_" + std::to_string(f.index) + ".png", view);
+      if (job_.display) {
+        cv::imshow("horopter", view);
+        if (cv::waitKey(1) == 27) gInterrupted = true;  // Esc stops like Ctrl-C
+      }
+    }
+    if (tty_ && (done_ % 5 == 0 || done_ == expected_)) progress(fps);
+  }
+
+ private:
+  void writeVideo(const cv::Mat& view) {
+    if (!writer_.isOpened()) {
+      const std::string path = job_.outDir + "/run.avi";
+      if (!writer_.open(path, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, view.size()))
+        throw Error("cannot write the video '" + path + "' (no MJPG encoder in this OpenCV?)");
+    }
+    writer_.write(view);
+  }
+
+  void progress(double fps) {
+    shown_ = true;
+    constexpr int kWidth = 30;
+    if (expected_ > 0) {
+      const int filled = static_cast<int>(kWidth * std::min<std::int64_t>(done_, expected_) / expected_);
+      std::fprintf(stderr, "\r[%s%s] %lld/%lld frames, %.0f frames/s ",
+                   std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(),
+                   static_cast<long long>(done_), static_cast<long long>(expected_), fps);
+    } else {
+      std::fprintf(stderr, "\r%lld frames, %.0f frames/s ", static_cast<long long>(done_), fps);
+    }
+  }
+
+  const RunJob& job_;
+  std::int64_t expected_, done_ = 0;
+  bool tty_ = false, shown_ = false;
+  SteadyClock::time_point start_;
+  cv::VideoWriter writer_;
+};
+
+void printSummary(const RunSummary& s, const RunJob& job, const std::string& backendName) {
+  std::printf("%lld frames in %.2f s: %.1f frames/s end to end, latency %.1f ms (max %.1f)",
+              static_cast<long long>(s.completed), s.seconds, s.fps(), s.meanLatencyMs,
+              s.maxLatencyMs);
+  if (s.dropped > 0) std::printf(", %lld stale frames dropped", static_cast<long long>(s.dropped));
+  std::printf("\n%d frame(s) in flight, %s mode, backend %s, %d thread(s)%s\n", job.inFlight,
+              job.live ? "live" : "offline", backendName.c_str(), job.threads,
+              s.stoppedByRequest ? ", stopped by request" : "");
+  std::printf("%-28s %8s %10s\n", "stage", "ms/frame", "frames/s");
+  for (const auto& st : s.stages)
+    std::printf("%-28s %8.2f %10.1f\n", st.name.c_str(), st.meanMs, st.fps());
+}
+
+}  // namespace
+
+int runPipeline(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << kRunHelp << stereoFlagsHelp(StereoParams{}, MedianParams{});
+    return 0;
+  }
+  const RunJob job = parseRun(args);
+  if (job.display && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+    throw Error("--display needs a display (DISPLAY is not set): drop --display, or run under X");
+
+  const Backend& backend = findBackend(job.backend);
+  std::unique_ptr<FrameSource> source = openSource(job.source, job.capture);
+  ThresholdFunction thresholds;
+  if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get()))
+    thresholds = syntheticThresholds(synthetic->scene());
+  else
+    thresholds = disparityThresholds(job);
+
+  PipelineOptions options;
+  options.mode = job.live ? PipelineMode::Live : PipelineMode::Offline;
+  options.inFlight = job.inFlight;
+  options.maxFrames = job.framesGiven ? job.frames : -1;
+  options.stopRequested = &gInterrupted;
+  const std::int64_t expected =
+      job.framesGiven ? job.frames : (job.source == "synthetic" ? job.capture.frames : -1);
+  Output output(job, expected);
+  options.onFrame = [&output](const Frame& f) { output(f); };
+
+  Pipeline pipeline(options);
+  pipeline.add(makeRectifyStage());
+  if (job.until != "rectify") {
+    pipeline.add(makeDisparityStage(job.stereo, job.median, backend, job.threads));
+    if (job.until != "disparity") pipeline.add(makeMaskStage(thresholds, job.stereo, backend));
+  }
+  if (!job.json)
+    std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name
+              << ", " << job.threads << " thread(s), " << job.inFlight << " frame(s) in flight\n";
+
+  gInterrupted = false;
+  const auto previous = std::signal(SIGINT, onInterrupt);
+  RunSummary summary;
+  try {
+    summary = pipeline.run(*source);
+  } catch (...) {
+    std::signal(SIGINT, previous);
+    throw;
+  }
+  std::signal(SIGINT, previous);
+
+  const std::string json = summaryJson(summary);
+  std::ofstream(job.outDir + "/summary.json") << json << "\n";
+  if (!job.trace.empty()) writeChromeTrace(summary, job.trace);
+  if (job.json)
+    std::printf("%s\n", json.c_str());
+  else
+    printSummary(summary, job, backend.name);
+  return 0;
+}
+
+}  // namespace horopter::cli

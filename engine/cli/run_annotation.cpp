@@ -1,0 +1,77 @@
+#include "run_annotation.hpp"
+
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+
+#include "horopter/opencv.hpp"
+#include "horopter/synthetic_scene.hpp"
+#include "io/disparity_images.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+cv::Mat asBgr(const cv::Mat& image) {
+  if (image.channels() == 3) return image;
+  cv::Mat bgr;
+  cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+  return bgr;
+}
+
+void label(cv::Mat& image, const std::string& text, int line) {
+  const cv::Point at(8, 22 + 22 * line);
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
+}
+
+}  // namespace
+
+cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps) {
+  const cv::Mat left = asBgr(frame.left);
+  const cv::Size size = left.size();
+  cv::Mat mosaic(size.height * 2, size.width * 2, CV_8UC3, cv::Scalar(24, 24, 24));
+
+  cv::Mat topLeft = mosaic(cv::Rect(0, 0, size.width, size.height));
+  left.copyTo(topLeft);
+  if (!frame.mask.empty()) {
+    const cv::Rect roi = cv::boundingRect(frame.mask);
+    if (roi.area() > 0) cv::rectangle(topLeft, roi, cv::Scalar(0, 255, 255), 2);
+  }
+  label(topLeft, "left, zone ROI", 0);
+
+  cv::Mat topRight = mosaic(cv::Rect(size.width, 0, size.width, size.height));
+  if (!frame.disparity.empty()) colorizeDisparity(viewOf(frame.disparity), params).copyTo(topRight);
+  label(topRight, "disparity (near red, far blue)", 0);
+
+  cv::Mat bottomLeft = mosaic(cv::Rect(0, size.height, size.width, size.height));
+  cv::Mat dimmed = left * 0.25;
+  dimmed.copyTo(bottomLeft);
+  if (!frame.mask.empty()) left.copyTo(bottomLeft, frame.mask);
+  label(bottomLeft, "inside the horopter", 0);
+
+  cv::Mat panel = mosaic(cv::Rect(size.width, size.height, size.width, size.height));
+  char text[160];
+  int line = 0;
+  std::snprintf(text, sizeof text, "frame %lld   %.0f frames/s",
+                static_cast<long long>(frame.index), fps);
+  label(panel, text, line++);
+  if (!frame.mask.empty()) {
+    std::snprintf(text, sizeof text, "inside the zone: %.1f%% of pixels",
+                  100.0 * cv::countNonZero(frame.mask) / static_cast<double>(frame.mask.total()));
+    label(panel, text, line++);
+  }
+  if (const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth)) {
+    std::snprintf(text, sizeof text, "head pan %.1f tilt %.1f deg, fixation %.2f m",
+                  truth->head.pan * 57.2958, truth->head.tilt * 57.2958, truth->fixationDistanceM);
+    label(panel, text, line++);
+    for (const auto& person : truth->people) {
+      std::snprintf(text, sizeof text, "person %d: %s, %s", person.id,
+                    person.insideZone ? "inside" : "outside", synth::movementName(person.movement));
+      label(panel, text, line++);
+    }
+  }
+  return mosaic;
+}
+
+}  // namespace horopter::cli

@@ -1,0 +1,16 @@
+// The annotated view of a frame for `horopter run`: the left image with the
+// zone's ROI, the disparity colour map, and the mask over the image.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "horopter/pipeline.hpp"
+#include "horopter/stereo_params.hpp"
+
+namespace horopter::cli {
+
+// A 2x2 mosaic (left | disparity / mask overlay | text panel), BGR, twice
+// the frame's width and height.
+cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps);
+
+}  // namespace horopter::cli

@@ -1,0 +1,75 @@
+// The run summary as JSON, and the Chrome trace of a run.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "horopter/error.hpp"
+#include "horopter/pipeline.hpp"
+
+namespace horopter {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string summaryJson(const RunSummary& s) {
+  std::ostringstream out;
+  out << "{\"frames\": " << s.completed << ", \"captured\": " << s.captured
+      << ", \"dropped\": " << s.dropped << ", \"seconds\": " << number(s.seconds)
+      << ", \"fps\": " << number(s.fps()) << ", \"latency_ms\": " << number(s.meanLatencyMs)
+      << ", \"max_latency_ms\": " << number(s.maxLatencyMs)
+      << ", \"stopped_by_request\": " << (s.stoppedByRequest ? "true" : "false")
+      << ", \"stages\": {";
+  for (std::size_t i = 0; i < s.stages.size(); ++i) {
+    const StageSummary& st = s.stages[i];
+    out << (i ? ", " : "") << quoted(st.name) << ": {\"frames\": " << st.frames
+        << ", \"ms\": " << number(st.meanMs) << ", \"fps\": " << number(st.fps()) << "}";
+  }
+  out << "}}";
+  return out.str();
+}
+
+void writeChromeTrace(const RunSummary& s, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write the trace to '" + path + "': check the directory exists");
+  out << "{\"displayTimeUnit\": \"ms\", \"traceEvents\": [\n";
+  // Lane names: 0 = capture, then the stages in order.
+  for (std::size_t i = 0; i < s.stages.size(); ++i) {
+    out << "{\"name\": \"thread_name\", \"ph\": \"M\", \"pid\": 1, \"tid\": " << i
+        << ", \"args\": {\"name\": " << quoted(s.stages[i].name) << "}},\n";
+  }
+  for (std::size_t i = 0; i < s.trace.size(); ++i) {
+    const TraceEvent& e = s.trace[i];
+    out << "{\"name\": " << quoted(e.stage + " #" + std::to_string(e.frame))
+        << ", \"cat\": \"frame\", \"ph\": \"X\", \"pid\": 1, \"tid\": " << e.lane
+        << ", \"ts\": " << number(e.startUs) << ", \"dur\": " << number(e.durationUs)
+        << ", \"args\": {\"frame\": " << e.frame << "}}" << (i + 1 < s.trace.size() ? ",\n" : "\n");
+  }
+  out << "]}\n";
+  if (!out) throw Error("writing the trace to '" + path + "' failed (disk full?)");
+}
+
+}  // namespace horopter

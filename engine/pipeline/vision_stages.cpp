@@ -1,0 +1,108 @@
+// The front end's pipeline stages. Each stage's output is copied into the
+// frame: the front end reuses its buffers for the next frame while this one
+// is still in flight downstream.
+#include "horopter/vision_stages.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include "horopter/error.hpp"
+#include "horopter/frontend.hpp"
+#include "horopter/kernels.hpp"
+#include "horopter/opencv.hpp"
+
+namespace horopter {
+
+namespace {
+
+cv::Mat toGreyMat(const cv::Mat& image) {
+  if (image.empty()) throw Error("the frame has no image (the source delivered an empty one)");
+  if (image.type() == CV_8UC1) return image;
+  cv::Mat grey;
+  if (image.type() == CV_8UC3)
+    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  else if (image.type() == CV_8UC4)
+    cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
+  else
+    throw Error("captured images must be 8-bit grey, BGR or BGRA");
+  return grey;
+}
+
+class RectifyStage final : public Stage {
+ public:
+  explicit RectifyStage(RectifyFunction rectify) : rectify_(std::move(rectify)) {}
+  std::string name() const override { return "rectify"; }
+  void process(Frame& f) override {
+    if (f.left.size() != f.right.size())
+      throw Error("left and right images differ in size");
+    if (rectify_) {
+      cv::Mat l, r;
+      rectify_(f.left, f.right, l, r);
+      f.left = l;
+      f.right = r;
+    }
+    f.leftGrey = toGreyMat(f.left);
+    f.rightGrey = toGreyMat(f.right);
+  }
+
+ private:
+  RectifyFunction rectify_;
+};
+
+class DisparityStage final : public Stage {
+ public:
+  DisparityStage(const StereoParams& stereo, const MedianParams& median, const Backend& backend,
+                 int threads)
+      : frontend_(stereo, median, backend, threads) {}
+  std::string name() const override { return "disparity"; }
+  void process(Frame& f) override {
+    if (f.leftGrey.empty()) throw Error("no grey views: put the rectify stage before disparity");
+    const Image& d = frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey));
+    f.disparity = matOf(d).clone();
+  }
+
+ private:
+  StereoFrontend frontend_;
+};
+
+class MaskStage final : public Stage {
+ public:
+  MaskStage(ThresholdFunction thresholds, const StereoParams& stereo, const Backend& backend)
+      : thresholds_(std::move(thresholds)), invalid_(invalidDisparity(stereo)), backend_(backend) {
+    if (!thresholds_) throw Error("the mask stage needs a threshold function");
+  }
+  std::string name() const override { return "mask"; }
+  void process(Frame& f) override {
+    if (f.disparity.empty()) throw Error("no disparity: put the disparity stage before mask");
+    f.thresholds.assign(static_cast<std::size_t>(f.disparity.cols), 0);
+    thresholds_(f, f.thresholds);
+    if (f.thresholds.size() != static_cast<std::size_t>(f.disparity.cols))
+      throw Error("the threshold function gave " + std::to_string(f.thresholds.size()) +
+                  " thresholds for " + std::to_string(f.disparity.cols) + " columns");
+    f.mask.create(f.disparity.size(), CV_8UC1);
+    horopterMask(viewOf(f.disparity), f.thresholds, invalid_, mutableViewOf(f.mask), {}, {},
+                 backend_);
+  }
+
+ private:
+  ThresholdFunction thresholds_;
+  std::int16_t invalid_;
+  const Backend& backend_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify) {
+  return std::make_unique<RectifyStage>(std::move(rectify));
+}
+
+std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const MedianParams& median,
+                                          const Backend& backend, int threads) {
+  return std::make_unique<DisparityStage>(stereo, median, backend, threads);
+}
+
+std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds, const StereoParams& stereo,
+                                     const Backend& backend) {
+  return std::make_unique<MaskStage>(std::move(thresholds), stereo, backend);
+}
+
+}  // namespace horopter

@@ -1,0 +1,151 @@
+// The frame pipeline: a scheduler that keeps several frames in flight.
+//
+// A pipeline is a frame source (capture) followed by stages (rectify,
+// disparity, mask, detection, ...). Each stage runs on its own lane, a thread
+// that takes frames in order, so a stage may keep state between frames (the
+// front end's buffers, a tracker) without locks, and frame N+1 can be in the
+// disparity stage while frame N is in detection and frame N+2 is being
+// captured. A stage that needs more than one core (the front end) brings its
+// own work: it runs its kernels on the engine's thread pool from its lane.
+//
+// The number of frames in flight (captured and not yet through the last
+// stage) is bounded by PipelineOptions::inFlight: that is the back-pressure.
+//
+//   Offline mode: capture waits for a free slot; every frame is processed, in
+//     order. Stage outputs depend only on the frame and on the frames before
+//     it, so they are the same whatever the thread count or depth in flight.
+//   Live mode: capture never waits. When every slot is taken, the newest
+//     captured frame waits in a one-frame mailbox and replaces (drops) the one
+//     that was waiting there: the newest frame wins, stale ones are counted as
+//     dropped, and latency stays bounded.
+//
+// An exception in a stage or in the source stops the pipeline: the source
+// stops, the lanes finish, every thread is joined, and run() throws a
+// horopter::Error that names the stage and the frame. A stop request (Ctrl-C)
+// stops capture and lets the frames already in flight finish.
+#pragma once
+
+#include <any>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace horopter {
+
+using SteadyClock = std::chrono::steady_clock;
+
+// When a stage worked on a frame, for the summary and the trace.
+struct StageSpan {
+  std::string stage;
+  SteadyClock::time_point start, end;
+};
+
+// One frame and everything the stages derive from it. Stages fill the fields
+// they produce; later stages read them.
+struct Frame {
+  std::int64_t index = 0;                 // 0, 1, 2... in capture order
+  SteadyClock::time_point captured{};     // when the source delivered it
+  cv::Mat left, right;                    // as captured (BGR or grey)
+  cv::Mat leftGrey, rightGrey;            // rectified, grey: the front end's input
+  cv::Mat disparity;                      // CV_16SC1, 1/16 px, after cleanup and median
+  std::vector<std::int16_t> thresholds;   // horopter threshold per column (1/16 px)
+  cv::Mat mask;                           // CV_8UC1, 255 inside the zone
+  std::any truth;                         // ground truth, when the source knows it
+  std::vector<StageSpan> spans;           // filled by the scheduler
+};
+
+// A capture source. next() fills the frame's images (and truth) and returns
+// false at the end of the input; it may block (a camera waits for its next
+// frame). Throw horopter::Error for a device that fails or stalls.
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual std::string name() const = 0;
+  virtual bool next(Frame& frame) = 0;
+};
+
+// One step of the per-frame work.
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  virtual std::string name() const = 0;
+  virtual void process(Frame& frame) = 0;
+};
+
+// A stage made of a function, for small steps and tests.
+std::unique_ptr<Stage> makeStage(std::string name, std::function<void(Frame&)> fn);
+
+enum class PipelineMode { Offline, Live };
+
+struct PipelineOptions {
+  PipelineMode mode = PipelineMode::Offline;
+  int inFlight = 3;        // frames between capture and the end of the last stage, 1..64
+  std::int64_t maxFrames = -1;  // stop after this many captured frames (-1: until the end)
+  // Polled by the source loop; set it (e.g. from a SIGINT handler) to stop
+  // capture and drain the frames in flight.
+  const std::atomic<bool>* stopRequested = nullptr;
+  // Called on the last lane with every finished frame, in order of completion
+  // (capture order in offline mode). Exceptions count as the "output" stage's.
+  std::function<void(const Frame&)> onFrame;
+};
+
+struct StageSummary {
+  std::string name;
+  std::int64_t frames = 0;
+  double meanMs = 0;  // wall time per frame in this stage
+  double fps() const { return meanMs > 0 ? 1000.0 / meanMs : 0; }
+};
+
+struct TraceEvent {
+  std::string stage;
+  std::int64_t frame = 0;
+  int lane = 0;              // 0 = capture, 1.. = the stages, in order
+  double startUs = 0, durationUs = 0;  // from the start of the run
+};
+
+struct RunSummary {
+  std::int64_t captured = 0;   // frames the source delivered
+  std::int64_t completed = 0;  // frames through every stage
+  std::int64_t dropped = 0;    // live mode: stale frames replaced before entering
+  double seconds = 0;          // wall time of the run
+  double fps() const { return seconds > 0 ? completed / seconds : 0; }
+  double meanLatencyMs = 0;    // capture to the end of the last stage
+  double maxLatencyMs = 0;
+  std::vector<StageSummary> stages;  // "capture" first
+  std::vector<TraceEvent> trace;
+  bool stoppedByRequest = false;
+};
+
+class Pipeline {
+ public:
+  explicit Pipeline(PipelineOptions options);  // validates them (horopter::Error)
+  ~Pipeline();
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  Pipeline& add(std::unique_ptr<Stage> stage);
+  const PipelineOptions& options() const { return options_; }
+
+  // Runs the source through the stages until the source ends, maxFrames are
+  // captured or a stop is requested. Throws horopter::Error naming the stage
+  // and frame when one fails; every thread is joined either way.
+  RunSummary run(FrameSource& source);
+
+ private:
+  PipelineOptions options_;
+  std::vector<std::unique_ptr<Stage>> stages_;
+};
+
+// Chrome trace events (open in Perfetto or chrome://tracing): one row per
+// lane, one slice per stage and frame, so the overlap of frames is visible.
+void writeChromeTrace(const RunSummary& summary, const std::string& path);
+
+// The summary as one JSON object: frames, fps, latency_ms, dropped, stages.
+std::string summaryJson(const RunSummary& summary);
+
+}  // namespace horopter

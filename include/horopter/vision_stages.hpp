@@ -1,0 +1,32 @@
+// The front end's stages for the frame pipeline: rectify (to grey), disparity
+// (prefilter, matching, cleanup, median) and the horopter mask.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include "horopter/backend.hpp"
+#include "horopter/pipeline.hpp"
+#include "horopter/stereo_params.hpp"
+
+namespace horopter {
+
+// Grey rectified views for the front end. With a `rectify` function (maps
+// computed once, e.g. from a calibration), it is applied to both captured
+// images first; without one the source is taken as rectified already.
+using RectifyFunction = std::function<void(const cv::Mat& left, const cv::Mat& right,
+                                           cv::Mat& leftOut, cv::Mat& rightOut)>;
+std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify = {});
+
+// The disparity of Frame::leftGrey/rightGrey (cleaned up, median-filtered)
+// into Frame::disparity, on `threads` threads of the stage's own pool.
+std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const MedianParams& median,
+                                          const Backend& backend, int threads);
+
+// Frame::thresholds from a function of the frame (the head's pose at capture
+// time makes the horopter dynamic), then Frame::mask from the disparity.
+using ThresholdFunction = std::function<void(const Frame& frame, std::vector<std::int16_t>& out)>;
+std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds, const StereoParams& stereo,
+                                     const Backend& backend);
+
+}  // namespace horopter
