@@ -14,6 +14,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "commands.hpp"
+#include "horopter/calibration.hpp"
 #include "horopter/capture.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
@@ -26,7 +27,9 @@ namespace {
 
 std::atomic<bool> gInterrupted{false};
 
-extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+extern "C" void onInterrupt(int) {
+  gInterrupted.store(true);
+}
 
 const char* kRunHelp =
     "Usage: horopter run [options]\n\n"
@@ -43,10 +46,15 @@ const char* kRunHelp =
     "  --size WxH         synthetic scene or camera size (default 640x480 / driver's)\n"
     "  --fps F            camera rate (default the driver's)\n"
     "  --max-skew-ms T    two cameras: most time between paired frames (default 15)\n"
-    "Zone (sources other than synthetic, which knows its rig):\n"
-    "  --fixation-disparity D  disparity (px) of the fixation point on the centre column\n"
-    "                          (default: the middle of the search range)\n"
-    "  --focal-px F            focal length of the rectified pair (default: image width)\n"
+    "Rectification and zone (sources other than synthetic, which knows its rig):\n"
+    "  --calib FILE            rectify with this calibration (horopter calibrate); the zone\n"
+    "                          then comes from its geometry and --fixation\n"
+    "  --fixation M            with --calib: fixation distance straight ahead, in the\n"
+    "                          calibration's unit (default 1.5)\n"
+    "  --fixation-disparity D  without --calib (the source is rectified already): disparity\n"
+    "                          (px) of the fixation point on the centre column (default: the\n"
+    "                          middle of the search range)\n"
+    "  --focal-px F            without --calib: focal length (default: image width)\n"
     "Scheduling:\n"
     "  --backend B        scalar, avx2, opencl..., auto (default auto)\n"
     "  --threads N        threads of the front end's pool (default: all cores)\n"
@@ -78,6 +86,8 @@ struct RunJob {
   std::string trace;
   bool json = false, display = false, video = true;
   std::optional<double> fixationDisparity, focalPx;
+  std::string calib;
+  double fixationDistance = 1.5;
 };
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -119,6 +129,10 @@ RunJob parseRun(Args& args) {
   job.video = !args.flag("--no-video");
   job.fixationDisparity = args.optionalDouble("--fixation-disparity");
   job.focalPx = args.optionalDouble("--focal-px");
+  job.calib = args.stringValue("--calib", "");
+  job.fixationDistance = args.doubleValue("--fixation", job.fixationDistance);
+  if (!(job.fixationDistance > 0 && std::isfinite(job.fixationDistance)))
+    throw Error("--fixation must be a positive distance");
   for (const auto& v : {job.fixationDisparity, job.focalPx})
     if (v && !(*v > 0 && std::isfinite(*v)))
       throw Error("--fixation-disparity and --focal-px must be positive numbers");
@@ -157,8 +171,9 @@ ThresholdFunction disparityThresholds(const RunJob& job) {
   const double fixation =
       job.fixationDisparity.value_or(job.stereo.minDisparity + job.stereo.numDisparities / 2.0);
   if (fixation <= 0)
-    throw Error("the middle of the search range is not in front of the cameras: pass "
-                "--fixation-disparity D with D > 0");
+    throw Error(
+        "the middle of the search range is not in front of the cameras: pass "
+        "--fixation-disparity D with D > 0");
   const std::optional<double> focal = job.focalPx;
   return [fixation, focal](const Frame& f, std::vector<std::int16_t>& out) {
     RectifiedGeometry g;
@@ -168,6 +183,26 @@ ThresholdFunction disparityThresholds(const RunJob& job) {
     g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
     out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
   };
+}
+
+// Rectification and thresholds from a calibration file: maps computed once,
+// the zone from the rectified geometry and a fixation straight ahead.
+std::pair<RectifyFunction, ThresholdFunction> calibrated(const RunJob& job) {
+  const StereoCalibration calibration = loadStereoCalibration(job.calib);
+  auto rectifier = std::make_shared<StereoRectifier>(calibration);
+  RectifyFunction rectify = [rectifier](const cv::Mat& l, const cv::Mat& r, cv::Mat& lo,
+                                        cv::Mat& ro) {
+    rectifier->rectify(l, r);
+    lo = rectifier->left().clone();  // the rectifier reuses its buffers
+    ro = rectifier->right().clone();
+  };
+  const RectifiedGeometry g = rectifiedGeometry(calibration);
+  const ViethMuellerCircle circle =
+      viethMuellerCircle(g.baseline, fixationAtDistance(g.baseline, job.fixationDistance));
+  ThresholdFunction thresholds = [g, circle](const Frame&, std::vector<std::int16_t>& out) {
+    horopterThresholds(g, circle, out);
+  };
+  return {rectify, thresholds};
 }
 
 // Annotates, shows and writes each finished frame; draws the progress bar.
@@ -182,6 +217,11 @@ class Output {
     if (tty_ && shown_) std::cerr << "\n";
   }
 
+  // Writes the last frame's still when the source's length was not known.
+  void finish() {
+    if (!lastView_.empty()) writeStill(lastView_, lastIndex_);
+  }
+
   void operator()(const Frame& f) {
     ++done_;
     const double seconds = std::chrono::duration<double>(SteadyClock::now() - start_).count();
@@ -189,8 +229,12 @@ class Output {
     if (job_.until.empty()) {
       const cv::Mat view = annotateFrame(f, job_.stereo, fps);
       if (job_.video) writeVideo(view);
-      if (f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_)
-        cv::imwrite(job_.outDir + "/still_" + std::to_string(f.index) + ".png", view);
+      if (f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_) {
+        writeStill(view, f.index);
+      } else {
+        lastView_ = view;  // the last frame's still, once the run ends
+        lastIndex_ = f.index;
+      }
       if (job_.display) {
         cv::imshow("horopter", view);
         if (cv::waitKey(1) == 27) gInterrupted = true;  // Esc stops like Ctrl-C
@@ -200,6 +244,12 @@ class Output {
   }
 
  private:
+  void writeStill(const cv::Mat& view, std::int64_t index) {
+    const std::string path = job_.outDir + "/still_" + std::to_string(index) + ".png";
+    if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
+    lastView_.release();
+  }
+
   void writeVideo(const cv::Mat& view) {
     if (!writer_.isOpened()) {
       const std::string path = job_.outDir + "/run.avi";
@@ -213,7 +263,8 @@ class Output {
     shown_ = true;
     constexpr int kWidth = 30;
     if (expected_ > 0) {
-      const int filled = static_cast<int>(kWidth * std::min<std::int64_t>(done_, expected_) / expected_);
+      const int filled =
+          static_cast<int>(kWidth * std::min<std::int64_t>(done_, expected_) / expected_);
       std::fprintf(stderr, "\r[%s%s] %lld/%lld frames, %.0f frames/s ",
                    std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(),
                    static_cast<long long>(done_), static_cast<long long>(expected_), fps);
@@ -227,6 +278,8 @@ class Output {
   bool tty_ = false, shown_ = false;
   SteadyClock::time_point start_;
   cv::VideoWriter writer_;
+  cv::Mat lastView_;
+  std::int64_t lastIndex_ = 0;
 };
 
 void printSummary(const RunSummary& s, const RunJob& job, const std::string& backendName) {
@@ -256,7 +309,10 @@ int runPipeline(Args& args) {
   const Backend& backend = findBackend(job.backend);
   std::unique_ptr<FrameSource> source = openSource(job.source, job.capture);
   ThresholdFunction thresholds;
-  if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get()))
+  RectifyFunction rectify;
+  if (!job.calib.empty())
+    std::tie(rectify, thresholds) = calibrated(job);
+  else if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get()))
     thresholds = syntheticThresholds(synthetic->scene());
   else
     thresholds = disparityThresholds(job);
@@ -272,14 +328,14 @@ int runPipeline(Args& args) {
   options.onFrame = [&output](const Frame& f) { output(f); };
 
   Pipeline pipeline(options);
-  pipeline.add(makeRectifyStage());
+  pipeline.add(makeRectifyStage(rectify));
   if (job.until != "rectify") {
     pipeline.add(makeDisparityStage(job.stereo, job.median, backend, job.threads));
     if (job.until != "disparity") pipeline.add(makeMaskStage(thresholds, job.stereo, backend));
   }
   if (!job.json)
-    std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name
-              << ", " << job.threads << " thread(s), " << job.inFlight << " frame(s) in flight\n";
+    std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name << ", "
+              << job.threads << " thread(s), " << job.inFlight << " frame(s) in flight\n";
 
   gInterrupted = false;
   const auto previous = std::signal(SIGINT, onInterrupt);
@@ -291,6 +347,7 @@ int runPipeline(Args& args) {
     throw;
   }
   std::signal(SIGINT, previous);
+  output.finish();
 
   const std::string json = summaryJson(summary);
   std::ofstream(job.outDir + "/summary.json") << json << "\n";
