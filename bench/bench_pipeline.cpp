@@ -53,7 +53,9 @@ void addFrontEnd(Pipeline& pipeline, int threads) {
   pipeline.add(makeRectifyStage())
       .add(makeDisparityStage(stereo, MedianParams{}, backend, threads))
       .add(makeMaskStage(
-          [](const Frame& f, std::vector<std::int16_t>& out) { out.assign(f.disparity.cols, 16 * 20); },
+          [](const Frame& f, std::vector<std::int16_t>& out) {
+            out.assign(f.disparity.cols, 16 * 20);
+          },
           stereo, backend));
 }
 
@@ -76,8 +78,8 @@ void runBatches(benchmark::State& state, bool render) {
       pipeline.run(replay);
     }
   }
-  state.counters["frames/s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * kBatch, benchmark::Counter::kIsRate);
+  state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * kBatch,
+                                                  benchmark::Counter::kIsRate);
 }
 
 }  // namespace

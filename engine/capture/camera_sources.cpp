@@ -21,8 +21,9 @@ CameraReader::CameraReader(const std::string& device, const CaptureOptions& opti
   if (!std::filesystem::exists(device))
     throw Error("camera '" + device + "' does not exist: list cameras with `ls /dev/video*`");
   if (!capture_.open(device, cv::CAP_V4L2))
-    throw Error("cannot open camera '" + device +
-                "' with V4L2: is it a capture device, and is it free (not used by another program)?");
+    throw Error(
+        "cannot open camera '" + device +
+        "' with V4L2: is it a capture device, and is it free (not used by another program)?");
   if (options.width > 0) capture_.set(cv::CAP_PROP_FRAME_WIDTH, options.width);
   if (options.height > 0) capture_.set(cv::CAP_PROP_FRAME_HEIGHT, options.height);
   if (options.fps > 0) capture_.set(cv::CAP_PROP_FPS, options.fps);
@@ -53,8 +54,8 @@ void CameraReader::loop() {
 
 CameraReader::Shot CameraReader::newerThan(std::int64_t after, std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
-  const bool got = arrived_.wait_for(
-      lock, timeout, [&] { return latest_.sequence > after || !failure_.empty(); });
+  const bool got = arrived_.wait_for(lock, timeout,
+                                     [&] { return latest_.sequence > after || !failure_.empty(); });
   if (!failure_.empty()) throw Error(failure_);
   if (!got)
     throw Error("camera '" + device_ + "' delivered no frame for " +

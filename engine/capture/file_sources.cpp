@@ -16,7 +16,8 @@ namespace {
 
 bool isImage(const fs::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".pgm" ||
          ext == ".ppm" || ext == ".tif" || ext == ".tiff";
 }
@@ -78,7 +79,8 @@ bool DirectorySource::next(Frame& frame) {
 
 VideoPairSource::VideoPairSource(const std::string& leftPath, const std::string& rightPath)
     : leftPath_(leftPath), rightPath_(rightPath) {
-  for (const auto& [path, capture] : {std::pair{&leftPath_, &left_}, std::pair{&rightPath_, &right_}}) {
+  for (const auto& [path, capture] :
+       {std::pair{&leftPath_, &left_}, std::pair{&rightPath_, &right_}}) {
     if (!fs::is_regular_file(*path)) throw Error("video file '" + *path + "' does not exist");
     if (!capture->open(*path))
       throw Error("cannot open video '" + *path + "': not a video OpenCV can decode");
@@ -91,7 +93,8 @@ bool VideoPairSource::next(Frame& frame) {
   if (!gotLeft && !gotRight) return false;
   if (gotLeft != gotRight)
     throw Error("'" + (gotLeft ? rightPath_ : leftPath_) + "' ended at frame " +
-                std::to_string(frames_) + " before the other video: the pair must be the same length");
+                std::to_string(frames_) +
+                " before the other video: the pair must be the same length");
   checkPair(frame.left, frame.right, "video frame " + std::to_string(frames_));
   ++frames_;
   return true;

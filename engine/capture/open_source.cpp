@@ -21,7 +21,8 @@ std::pair<std::string, std::string> twoPaths(const std::string& list, const std:
 
 SyntheticSource::SyntheticSource(const synth::SceneOptions& options, int frames)
     : scene_(options), frames_(frames) {
-  if (frames < 1) throw Error("the synthetic scene needs at least 1 frame, got " + std::to_string(frames));
+  if (frames < 1)
+    throw Error("the synthetic scene needs at least 1 frame, got " + std::to_string(frames));
 }
 
 bool SyntheticSource::next(Frame& frame) {
@@ -48,7 +49,8 @@ std::unique_ptr<FrameSource> openSource(const std::string& spec, const CaptureOp
     const auto [l, r] = twoPaths(rest, spec);
     return std::make_unique<capture::CameraPairSource>(l, r, options);
   }
-  if (kind == "sbs" && !rest.empty()) return std::make_unique<capture::SideBySideSource>(rest, options);
+  if (kind == "sbs" && !rest.empty())
+    return std::make_unique<capture::SideBySideSource>(rest, options);
   throw Error("unknown source '" + spec +
               "': use synthetic, dir:PATH, video:LEFT,RIGHT, camera:LEFTDEV,RIGHTDEV or sbs:DEV");
 }

@@ -41,9 +41,13 @@ constexpr std::size_t kMaxTraceEvents = 200000;
 class Run {
  public:
   Run(const PipelineOptions& options, std::vector<std::unique_ptr<Stage>>& stages)
-      : options_(options), stages_(stages), queues_(stages.size() + 1),
-        stageMs_(stages.size(), 0.0), stageFrames_(stages.size(), 0),
-        freeSlots_(options.inFlight), start_(SteadyClock::now()) {}
+      : options_(options),
+        stages_(stages),
+        queues_(stages.size() + 1),
+        stageMs_(stages.size(), 0.0),
+        stageFrames_(stages.size(), 0),
+        freeSlots_(options.inFlight),
+        start_(SteadyClock::now()) {}
 
   RunSummary execute(FrameSource& source) {
     std::vector<std::thread> lanes;
@@ -64,7 +68,8 @@ class Run {
   void fail(const std::string& stage, std::int64_t frame, const std::string& what) {
     {
       std::lock_guard lock(errorMutex_);
-      if (!error_) error_ = "stage '" + stage + "' failed on frame " + std::to_string(frame) + ": " + what;
+      if (!error_)
+        error_ = "stage '" + stage + "' failed on frame " + std::to_string(frame) + ": " + what;
     }
     aborted_.store(true, std::memory_order_release);
     for (auto& q : queues_)

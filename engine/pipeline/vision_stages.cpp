@@ -32,8 +32,7 @@ class RectifyStage final : public Stage {
   explicit RectifyStage(RectifyFunction rectify) : rectify_(std::move(rectify)) {}
   std::string name() const override { return "rectify"; }
   void process(Frame& f) override {
-    if (f.left.size() != f.right.size())
-      throw Error("left and right images differ in size");
+    if (f.left.size() != f.right.size()) throw Error("left and right images differ in size");
     if (rectify_) {
       cv::Mat l, r;
       rectify_(f.left, f.right, l, r);

@@ -48,15 +48,15 @@ struct StageSpan {
 // One frame and everything the stages derive from it. Stages fill the fields
 // they produce; later stages read them.
 struct Frame {
-  std::int64_t index = 0;                 // 0, 1, 2... in capture order
-  SteadyClock::time_point captured{};     // when the source delivered it
-  cv::Mat left, right;                    // as captured (BGR or grey)
-  cv::Mat leftGrey, rightGrey;            // rectified, grey: the front end's input
-  cv::Mat disparity;                      // CV_16SC1, 1/16 px, after cleanup and median
-  std::vector<std::int16_t> thresholds;   // horopter threshold per column (1/16 px)
-  cv::Mat mask;                           // CV_8UC1, 255 inside the zone
-  std::any truth;                         // ground truth, when the source knows it
-  std::vector<StageSpan> spans;           // filled by the scheduler
+  std::int64_t index = 0;                // 0, 1, 2... in capture order
+  SteadyClock::time_point captured{};    // when the source delivered it
+  cv::Mat left, right;                   // as captured (BGR or grey)
+  cv::Mat leftGrey, rightGrey;           // rectified, grey: the front end's input
+  cv::Mat disparity;                     // CV_16SC1, 1/16 px, after cleanup and median
+  std::vector<std::int16_t> thresholds;  // horopter threshold per column (1/16 px)
+  cv::Mat mask;                          // CV_8UC1, 255 inside the zone
+  std::any truth;                        // ground truth, when the source knows it
+  std::vector<StageSpan> spans;          // filled by the scheduler
 };
 
 // A capture source. next() fills the frame's images (and truth) and returns
@@ -84,7 +84,7 @@ enum class PipelineMode { Offline, Live };
 
 struct PipelineOptions {
   PipelineMode mode = PipelineMode::Offline;
-  int inFlight = 3;        // frames between capture and the end of the last stage, 1..64
+  int inFlight = 3;             // frames between capture and the end of the last stage, 1..64
   std::int64_t maxFrames = -1;  // stop after this many captured frames (-1: until the end)
   // Polled by the source loop; set it (e.g. from a SIGINT handler) to stop
   // capture and drain the frames in flight.
@@ -104,7 +104,7 @@ struct StageSummary {
 struct TraceEvent {
   std::string stage;
   std::int64_t frame = 0;
-  int lane = 0;              // 0 = capture, 1.. = the stages, in order
+  int lane = 0;                        // 0 = capture, 1.. = the stages, in order
   double startUs = 0, durationUs = 0;  // from the start of the run
 };
 
@@ -114,7 +114,7 @@ struct RunSummary {
   std::int64_t dropped = 0;    // live mode: stale frames replaced before entering
   double seconds = 0;          // wall time of the run
   double fps() const { return seconds > 0 ? completed / seconds : 0; }
-  double meanLatencyMs = 0;    // capture to the end of the last stage
+  double meanLatencyMs = 0;  // capture to the end of the last stage
   double maxLatencyMs = 0;
   std::vector<StageSummary> stages;  // "capture" first
   std::vector<TraceEvent> trace;

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgproc.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "horopter/capture.hpp"
@@ -122,8 +122,9 @@ TEST(Capture, VideoPairSourceReadsBothVideosFrameByFrame) {
     ++frames;
   }
   EXPECT_EQ(frames, 5);
-  EXPECT_NE(errorOf([&] { openSource("video:" + lp + ",/no/such.avi", {}); }).find("does not exist"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { openSource("video:" + lp + ",/no/such.avi", {}); }).find("does not exist"),
+      std::string::npos);
   EXPECT_NE(errorOf([&] { openSource("video:" + lp, {}); }).find("two comma-separated"),
             std::string::npos);
 }
@@ -131,8 +132,9 @@ TEST(Capture, VideoPairSourceReadsBothVideosFrameByFrame) {
 TEST(Capture, UnknownSpecsAndMissingCamerasAreClearErrors) {
   EXPECT_NE(errorOf([] { openSource("kinect", {}); }).find("unknown source 'kinect'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { openSource("camera:/dev/no-video-98,/dev/no-video-99", {}); })
-                .find("does not exist"),
+  EXPECT_NE(errorOf([] {
+              openSource("camera:/dev/no-video-98,/dev/no-video-99", {});
+            }).find("does not exist"),
             std::string::npos);
   EXPECT_NE(errorOf([] { openSource("sbs:/dev/no-video-97", {}); }).find("does not exist"),
             std::string::npos);

@@ -55,8 +55,9 @@ std::vector<int> runAndCollect(PipelineOptions options, std::int64_t frames,
   std::vector<int> outputs;
   options.onFrame = [&](const Frame& f) { outputs.push_back(f.left.at<int>(0, 0)); };
   Pipeline pipeline(options);
-  pipeline.add(statefulStage("a", work)).add(statefulStage("b", work / 2)).add(
-      statefulStage("c", 0us));
+  pipeline.add(statefulStage("a", work))
+      .add(statefulStage("b", work / 2))
+      .add(statefulStage("c", 0us));
   CountingSource source(frames);
   const RunSummary summary = pipeline.run(source);
   EXPECT_EQ(summary.captured, frames);
@@ -289,8 +290,8 @@ TEST(Pipeline, TraceAndSummaryAreJson) {
   const RunSummary s = pipeline.run(source);
   EXPECT_EQ(s.trace.size(), 8u);  // capture + disparity per frame
   const std::string json = summaryJson(s);
-  for (const char* key : {"\"frames\": 4", "\"fps\"", "\"latency_ms\"", "\"stages\"",
-                          "\"disparity\": {"})
+  for (const char* key :
+       {"\"frames\": 4", "\"fps\"", "\"latency_ms\"", "\"stages\"", "\"disparity\": {"})
     EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
   const std::string path = ::testing::TempDir() + "/horopter_trace.json";
   writeChromeTrace(s, path);
