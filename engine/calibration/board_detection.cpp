@@ -2,7 +2,6 @@
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
-#include <regex>
 #include <string>
 
 #include "horopter/calibration.hpp"
@@ -32,11 +31,16 @@ cv::Mat toGrey(const cv::Mat& image) {
 }  // namespace
 
 cv::Size parseBoardSize(const std::string& text) {
-  static const std::regex form(R"((\d{1,3})x(\d{1,3}))");
-  std::smatch m;
-  if (!std::regex_match(text, m, form))
+  // COLSxROWS: digits, 'x', digits, nothing else (no std::regex: GCC 12 warns
+  // inside it under the sanitizers).
+  const std::size_t x = text.find('x');
+  const auto digits = [](const std::string& part) {
+    return !part.empty() && part.size() <= 3 &&
+           part.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
     throw Error("board size must be COLSxROWS of inner corners, e.g. 9x6, got '" + text + "'");
-  const cv::Size s(std::stoi(m[1]), std::stoi(m[2]));
+  const cv::Size s(std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1)));
   if (s.width < 2 || s.height < 2)
     throw Error("a board needs at least 2x2 inner corners, got " + text);
   if (s.width == s.height)
