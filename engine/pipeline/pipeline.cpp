@@ -47,7 +47,10 @@ class Run {
         stageMs_(stages.size(), 0.0),
         stageFrames_(stages.size(), 0),
         freeSlots_(options.inFlight),
-        start_(SteadyClock::now()) {}
+        start_(SteadyClock::now()) {
+    for (const auto& stage : stages_)
+      names_.push_back(stage->name());
+  }
 
   RunSummary execute(FrameSource& source) {
     std::vector<std::thread> lanes;
@@ -162,7 +165,7 @@ class Run {
 
   void laneLoop(std::size_t i) {
     Stage& stage = *stages_[i];
-    const std::string name = stage.name();
+    const std::string& name = names_[i];
     const bool last = i + 1 == stages_.size();
     while (auto frame = queues_[i].pop()) {
       if (aborted()) {
@@ -211,8 +214,8 @@ class Run {
     for (const StageSpan& span : frame.spans) {
       if (trace_.size() >= kMaxTraceEvents) return;
       int lane = 0;
-      for (std::size_t i = 0; i < stages_.size(); ++i)
-        if (span.stage == stages_[i]->name()) lane = static_cast<int>(i) + 1;
+      for (std::size_t i = 0; i < names_.size(); ++i)
+        if (span.stage == names_[i]) lane = static_cast<int>(i) + 1;
       trace_.push_back({span.stage, frame.index, lane,
                         std::chrono::duration<double, std::micro>(span.start - start_).count(),
                         std::chrono::duration<double, std::micro>(span.end - span.start).count()});
@@ -233,7 +236,7 @@ class Run {
                         captured_ > 0 ? captureMs_ / static_cast<double>(captured_) : 0});
     for (std::size_t i = 0; i < stages_.size(); ++i) {
       const auto n = stageFrames_[i];
-      s.stages.push_back({stages_[i]->name(), n, n > 0 ? stageMs_[i] / static_cast<double>(n) : 0});
+      s.stages.push_back({names_[i], n, n > 0 ? stageMs_[i] / static_cast<double>(n) : 0});
     }
     s.trace = std::move(trace_);
     return s;
@@ -241,6 +244,7 @@ class Run {
 
   const PipelineOptions& options_;
   std::vector<std::unique_ptr<Stage>>& stages_;
+  std::vector<std::string> names_;  // the stages' names, asked once
   // queues_[i] feeds stage i; the last one is unused (the last lane finishes frames).
   std::vector<FrameQueue> queues_;
   // Written by lane i only; read after the joins.
