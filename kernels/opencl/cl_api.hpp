@@ -19,4 +19,9 @@ std::string errorName(cl_int err);
 // Throws horopter::Error("OpenCL: <what> failed: <name>") unless err is CL_SUCCESS.
 void check(cl_int err, const char* what);
 
+// A string property of a device or platform, without its trailing NULs;
+// "" when the query fails.
+std::string deviceString(cl_device_id device, cl_device_info what);
+std::string platformString(cl_platform_id platform, cl_platform_info what);
+
 }  // namespace horopter::opencl

@@ -6,8 +6,7 @@
 #include "horopter/devices.hpp"
 
 #ifdef HOROPTER_HAVE_OPENCL
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
+#include "opencl/cl_api.hpp"
 #endif
 
 namespace horopter {
@@ -15,25 +14,8 @@ namespace horopter {
 #ifdef HOROPTER_HAVE_OPENCL
 namespace {
 
-std::string platformString(cl_platform_id platform, cl_platform_info what) {
-  size_t size = 0;
-  if (clGetPlatformInfo(platform, what, 0, nullptr, &size) != CL_SUCCESS || size == 0) return "";
-  std::string s(size, '\0');
-  clGetPlatformInfo(platform, what, size, s.data(), nullptr);
-  while (!s.empty() && s.back() == '\0')
-    s.pop_back();
-  return s;
-}
-
-std::string deviceString(cl_device_id device, cl_device_info what) {
-  size_t size = 0;
-  if (clGetDeviceInfo(device, what, 0, nullptr, &size) != CL_SUCCESS || size == 0) return "";
-  std::string s(size, '\0');
-  clGetDeviceInfo(device, what, size, s.data(), nullptr);
-  while (!s.empty() && s.back() == '\0')
-    s.pop_back();
-  return s;
-}
+using opencl::deviceString;
+using opencl::platformString;
 
 std::string typeName(cl_device_type type) {
   if (type & CL_DEVICE_TYPE_GPU) return "gpu";
