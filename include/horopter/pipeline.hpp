@@ -35,7 +35,14 @@
 #include <string>
 #include <vector>
 
+#include "horopter/body.hpp"
+
 namespace horopter {
+
+// What the later stages produce, defined in their own headers (issues 7, 8, 9):
+struct Detections;     // horopter/detection.hpp: faces, hands, triangles in this frame
+struct TrackingState;  // horopter/tracking.hpp: godfather election, tracks, head command
+struct MovementState;  // horopter/movement.hpp: LMA features, posterior, decision, action
 
 using SteadyClock = std::chrono::steady_clock;
 
@@ -56,7 +63,11 @@ struct Frame {
   std::vector<std::int16_t> thresholds;  // horopter threshold per column (1/16 px)
   cv::Mat mask;                          // CV_8UC1, 255 inside the zone
   std::any truth;                        // ground truth, when the source knows it
-  std::vector<StageSpan> spans;          // filled by the scheduler
+  std::shared_ptr<const Detections> detections;
+  std::shared_ptr<const TrackingState> tracking;
+  BodySample body;  // the godfather's head and hands (filled by tracking)
+  std::shared_ptr<const MovementState> movement;
+  std::vector<StageSpan> spans;  // filled by the scheduler
 };
 
 // A capture source. next() fills the frame's images (and truth) and returns
