@@ -13,5 +13,6 @@ int runDevices(Args& args);
 int runCalibrate(Args& args);
 int runRectify(Args& args);
 int runGeometry(Args& args);
+int runProfile(Args& args);
 
 }  // namespace horopter::cli

@@ -23,7 +23,9 @@ const char* kUsage =
     "  calibrate     stereo calibration from chessboard views -> calib.yml (OpenCV YAML)\n"
     "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n"
     "  geometry      the zone of interaction of a calibrated head for a fixation (+ top-down "
-    "PNG)\n";
+    "PNG)\n"
+    "  profile       per-stage time of the front end on each backend (OpenCL: device time of\n"
+    "                upload, each kernel, download)\n";
 
 }  // namespace
 
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     if (command == "calibrate") return runCalibrate(args);
     if (command == "rectify") return runRectify(args);
     if (command == "geometry") return runGeometry(args);
+    if (command == "profile") return runProfile(args);
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
     return 2;
   } catch (const horopter::Error& e) {

@@ -152,7 +152,8 @@ void enqueueMedian(cl_command_queue q, cl_kernel k, cl_mem src, cl_mem dst, int 
   if (rows.end <= rows.begin) return;
   const cl_short inv = invalid;
   setArgs(k, src, dst, width, width, height, kernelSize, minValid, inv, rows.begin, rows.end);
-  enqueuePerPixel(q, k, width, rows, event, "running the median");
+  // One work-item per 8 pixels of a row (median.cl works in short8 vectors).
+  enqueuePerPixel(q, k, (width + 7) / 8, rows, event, "running the median");
 }
 
 void enqueueMask(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem thresholds, int width,
