@@ -8,6 +8,7 @@
 #include "horopter/error.hpp"
 #include "horopter/frontend.hpp"
 #include "horopter/kernels.hpp"
+#include "horopter/opencl_frontend.hpp"
 #include "horopter/opencv.hpp"
 
 namespace horopter {
@@ -63,6 +64,27 @@ class DisparityStage final : public Stage {
   StereoFrontend frontend_;
 };
 
+// On an OpenCL device the whole chain stays on the device (one upload of
+// the pair, one download of the disparity; the speckle filter on the CPU),
+// instead of one round trip per kernel through the backend's kernel table.
+// The lane sleeps in the wait while the device works, so the other stages'
+// lanes keep the CPU busy with the neighbouring frames.
+class OpenClDisparityStage final : public Stage {
+ public:
+  OpenClDisparityStage(const StereoParams& stereo, const MedianParams& median,
+                       const std::string& device, int cpuThreads)
+      : frontend_(stereo, median, device, 1, cpuThreads) {}
+  std::string name() const override { return "disparity"; }
+  void process(Frame& f) override {
+    if (f.leftGrey.empty()) throw Error("no grey views: put the rectify stage before disparity");
+    const Image& d = frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey));
+    f.disparity = matOf(d).clone();
+  }
+
+ private:
+  OpenClFrontend frontend_;
+};
+
 class MaskStage final : public Stage {
  public:
   MaskStage(ThresholdFunction thresholds, const StereoParams& stereo, const Backend& backend)
@@ -96,6 +118,8 @@ std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify) {
 
 std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const MedianParams& median,
                                           const Backend& backend, int threads) {
+  if (backend.name.rfind("opencl", 0) == 0)
+    return std::make_unique<OpenClDisparityStage>(stereo, median, backend.name, threads);
   return std::make_unique<DisparityStage>(stereo, median, backend, threads);
 }
 

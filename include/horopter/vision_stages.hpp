@@ -19,7 +19,9 @@ using RectifyFunction = std::function<void(const cv::Mat& left, const cv::Mat& r
 std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify = {});
 
 // The disparity of Frame::leftGrey/rightGrey (cleaned up, median-filtered)
-// into Frame::disparity, on `threads` threads of the stage's own pool.
+// into Frame::disparity, on `threads` threads of the stage's own pool. An
+// OpenCL backend runs the device-resident OpenClFrontend (with its CPU
+// fallback; `threads` are then the fallback's).
 std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const MedianParams& median,
                                           const Backend& backend, int threads);
 
