@@ -1,0 +1,263 @@
+// DYNAMIXEL head driver: see include/horopter/hardware/dynamixel_head.hpp.
+#include "horopter/hardware/dynamixel_head.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace horopter::hw {
+
+DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, DynamixelHeadOptions options)
+    : transport_(std::move(transport)), options_(std::move(options)) {
+  if (!transport_) throw Error("DynamixelHead needs a transport");
+  if (options_.leftVergenceId.has_value() != options_.rightVergenceId.has_value())
+    throw Error("give both vergence servo IDs (left and right) or neither");
+  if (std::abs(options_.panDirection) != 1 || std::abs(options_.tiltDirection) != 1)
+    throw Error("pan/tilt direction must be +1 or -1");
+  if (options_.period.count() < 5 || options_.replyTimeout.count() < 1 || options_.retries < 0)
+    throw Error("DynamixelHead: period must be >= 5 ms, reply timeout >= 1 ms, retries >= 0");
+  ids_ = {options_.panId, options_.tiltId};
+  if (options_.leftVergenceId) {
+    ids_.push_back(*options_.leftVergenceId);
+    ids_.push_back(*options_.rightVergenceId);
+    options_.limits.hasVergence = true;
+  } else {
+    options_.limits.hasVergence = false;
+  }
+  for (std::uint8_t id : ids_) {
+    const auto replies = exchange(dxl::pingPacket(id), {id});
+    if (replies.empty())
+      throw Error("DYNAMIXEL ID " + std::to_string(id) + " does not answer on " +
+                  transport_->describe() +
+                  ": check the ID, the baud rate (X series default 57600) "
+                  "and the power");
+    const auto& d = replies[0].data;
+    modelNumbers_.push_back(d.size() >= 2 ? dxl::fromLittleEndian(std::span(d).first(2)) : -1);
+  }
+  for (std::uint8_t id : ids_) {
+    const std::vector<std::uint8_t> one = {1};
+    if (exchange(dxl::writePacket(id, options_.model.torqueEnableAddress, one), {id}).empty())
+      throw Error("DYNAMIXEL ID " + std::to_string(id) + " did not acknowledge Torque Enable");
+  }
+  const auto present =
+      exchange(dxl::syncReadPacket(options_.model.presentPositionAddress, 4, ids_), ids_);
+  if (present.size() == ids_.size()) {
+    std::vector<std::int32_t> ticks;
+    for (const auto& s : present)
+      ticks.push_back(dxl::fromLittleEndian(s.data));
+    lastTicks_ = ticks;
+    measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
+    target_ = measured_->angles;
+  }
+  thread_ = std::thread([this] { run(); });
+}
+
+DynamixelHead::~DynamixelHead() {
+  shutdown();
+}
+
+std::string DynamixelHead::name() const {
+  return "DYNAMIXEL head (" + options_.model.family + ") on " + transport_->describe();
+}
+
+void DynamixelHead::command(const HeadAngles& target, double speedRadPerS) {
+  if (!std::isfinite(target.pan) || !std::isfinite(target.tilt) ||
+      !std::isfinite(target.vergence) || !std::isfinite(speedRadPerS) || speedRadPerS < 0)
+    throw Error("head command must be finite angles and a speed >= 0");
+  const HeadLimits& l = options_.limits;
+  std::lock_guard lock(mutex_);
+  target_.pan = std::clamp(target.pan, l.panMin, l.panMax);
+  target_.tilt = std::clamp(target.tilt, l.tiltMin, l.tiltMax);
+  target_.vergence = l.hasVergence ? std::clamp(target.vergence, l.vergenceMin, l.vergenceMax) : 0;
+  const double want = speedRadPerS > 0 ? speedRadPerS : options_.defaultSpeed;
+  speed_ = std::min(want, l.maxSpeed);
+  haltRequested_ = false;
+  ++targetGeneration_;
+}
+
+std::optional<HeadMeasurement> DynamixelHead::measured() const {
+  std::lock_guard lock(mutex_);
+  return measured_;
+}
+
+void DynamixelHead::halt() {
+  std::lock_guard lock(mutex_);
+  haltRequested_ = true;
+}
+
+HeadHealth DynamixelHead::health() const {
+  std::lock_guard lock(mutex_);
+  return health_;
+}
+
+std::vector<std::pair<std::uint8_t, std::int32_t>> DynamixelHead::goalTicks(
+    const HeadAngles& a) const {
+  const auto& m = options_.model;
+  std::vector<std::pair<std::uint8_t, std::int32_t>> v = {
+      {options_.panId, dxl::radiansToTicks(options_.panDirection * a.pan, m)},
+      {options_.tiltId, dxl::radiansToTicks(options_.tiltDirection * a.tilt, m)}};
+  if (options_.leftVergenceId) {
+    v.push_back({*options_.leftVergenceId, dxl::radiansToTicks(a.vergence / 2, m)});
+    v.push_back({*options_.rightVergenceId, dxl::radiansToTicks(-a.vergence / 2, m)});
+  }
+  return v;
+}
+
+HeadAngles DynamixelHead::anglesFromTicks(const std::vector<std::int32_t>& t) const {
+  const auto& m = options_.model;
+  HeadAngles a;
+  a.pan = options_.panDirection * dxl::ticksToRadians(t[0], m);
+  a.tilt = options_.tiltDirection * dxl::ticksToRadians(t[1], m);
+  if (t.size() >= 4) a.vergence = dxl::ticksToRadians(t[2], m) - dxl::ticksToRadians(t[3], m);
+  return a;
+}
+
+// Sends `request`, collects one status packet from each of `ids` (in order).
+// Empty result: failed after the retries (the reason is in health()).
+std::vector<dxl::Status> DynamixelHead::exchange(const std::vector<std::uint8_t>& request,
+                                                 const std::vector<std::uint8_t>& ids) {
+  std::string why;
+  for (int attempt = 0; attempt <= options_.retries; ++attempt) {
+    transport_->discardInput();
+    rx_.clear();
+    transport_->write(request);
+    std::vector<dxl::Status> got;
+    bool corrupt = false;
+    const auto deadline = Clock::now() + options_.replyTimeout *
+                                             static_cast<int>(std::max<std::size_t>(1, ids.size()));
+    while (got.size() < ids.size() && !corrupt) {
+      const dxl::ParseResult r = dxl::parsePacket(rx_);
+      rx_.erase(rx_.begin(), rx_.begin() + static_cast<std::ptrdiff_t>(r.consumed));
+      if (r.outcome == dxl::ParseOutcome::kCorrupt) {
+        corrupt = true;
+        why = r.error;
+        break;
+      }
+      if (r.outcome == dxl::ParseOutcome::kPacket) {
+        if (r.packet.instruction != dxl::inst::kStatus)
+          continue;  // our own echo on a half-duplex adapter
+        const dxl::Status s = dxl::toStatus(r.packet);
+        if (s.id != ids[got.size()]) continue;
+        got.push_back(s);
+        continue;
+      }
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      if (left.count() <= 0) break;
+      const auto more = transport_->read(256, left);
+      rx_.insert(rx_.end(), more.begin(), more.end());
+    }
+    std::lock_guard lock(mutex_);
+    if (corrupt) {
+      ++health_.corruptReplies;
+      health_.lastFault = "corrupt reply: " + why;
+      continue;
+    }
+    if (got.size() < ids.size()) {
+      ++health_.timeouts;
+      why = "no reply from ID " + std::to_string(ids[got.size()]) + " within " +
+            std::to_string(options_.replyTimeout.count()) + " ms";
+      health_.lastFault = why;
+      continue;
+    }
+    bool deviceError = false;
+    for (const auto& s : got)
+      if (s.error & 0x7F) {
+        ++health_.deviceErrors;
+        health_.lastFault = "ID " + std::to_string(s.id) + ": " + dxl::describeError(s.error);
+        deviceError = true;
+      }
+    if (deviceError) continue;
+    ++health_.exchanges;
+    return got;
+  }
+  return {};
+}
+
+void DynamixelHead::fail(const std::string& what) {
+  std::lock_guard lock(mutex_);
+  health_.lastFault = what;
+  if (++failuresInARow_ >= options_.linkLostAfter) health_.linkUp = false;
+}
+
+void DynamixelHead::cycle() {
+  HeadAngles target;
+  double speed;
+  long generation;
+  bool haltNow;
+  {
+    std::lock_guard lock(mutex_);
+    target = target_;
+    speed = speed_;
+    generation = targetGeneration_;
+    haltNow = haltRequested_;
+    haltRequested_ = false;
+  }
+  const auto& m = options_.model;
+  if (haltNow && !lastTicks_.empty()) {
+    std::vector<std::pair<std::uint8_t, std::int32_t>> hold;
+    for (std::size_t i = 0; i < ids_.size(); ++i)
+      hold.push_back({ids_[i], lastTicks_[i]});
+    transport_->write(dxl::syncWritePacket(m.goalPositionAddress, 4, hold));
+    sentGeneration_ = generation;
+  } else if (generation != sentGeneration_) {
+    const std::int32_t units = dxl::radPerSecondToVelocityUnits(speed, m);
+    std::vector<std::pair<std::uint8_t, std::int32_t>> velocities;
+    for (std::uint8_t id : ids_)
+      velocities.push_back({id, units});
+    transport_->write(dxl::syncWritePacket(m.profileVelocityAddress, 4, velocities));
+    transport_->write(dxl::syncWritePacket(m.goalPositionAddress, 4, goalTicks(target)));
+    sentGeneration_ = generation;
+  }
+  const auto replies = exchange(dxl::syncReadPacket(m.presentPositionAddress, 4, ids_), ids_);
+  if (replies.size() != ids_.size()) {
+    fail(health().lastFault);
+    return;
+  }
+  std::vector<std::int32_t> ticks;
+  for (const auto& s : replies)
+    ticks.push_back(dxl::fromLittleEndian(s.data));
+  lastTicks_ = ticks;
+  std::lock_guard lock(mutex_);
+  measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
+  failuresInARow_ = 0;
+  health_.linkUp = true;
+}
+
+void DynamixelHead::run() {
+  auto next = Clock::now();
+  while (true) {
+    try {
+      cycle();
+    } catch (const LinkError& e) {
+      std::lock_guard lock(mutex_);
+      health_.linkUp = false;
+      health_.lastFault = e.what();
+    }
+    next += options_.period;
+    std::unique_lock lock(wakeMutex_);
+    if (wake_.wait_until(lock, next, [this] { return stopping_; })) break;
+    if (Clock::now() > next + options_.period) next = Clock::now();
+  }
+}
+
+void DynamixelHead::shutdown() {
+  {
+    std::lock_guard lock(wakeMutex_);
+    if (stopping_) return;
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  // Hold where it is (best effort): the servos keep torque and stop moving.
+  try {
+    if (!lastTicks_.empty()) {
+      std::vector<std::pair<std::uint8_t, std::int32_t>> hold;
+      for (std::size_t i = 0; i < ids_.size(); ++i)
+        hold.push_back({ids_[i], lastTicks_[i]});
+      transport_->write(dxl::syncWritePacket(options_.model.goalPositionAddress, 4, hold));
+    }
+  } catch (const LinkError&) {
+  }
+}
+
+}  // namespace horopter::hw

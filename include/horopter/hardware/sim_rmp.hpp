@@ -1,0 +1,70 @@
+// A simulated Segway RMP behind a CanTransport (the device side of an
+// InProcessCanBus): it obeys 0x413 motion frames and the reset-integrators
+// configuration command, moves a kinematic unicycle model, and reports the
+// 0x400..0x407 status series, byte for byte as rmp_protocol.hpp encodes it,
+// so the real RmpBase driver's odometry follows the commands.
+//
+// Checked only against our own reading of the protocol (there is no RMP
+// here); see the tests for what is checked against libsegwayrmp's layout.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+#include "horopter/hardware/rmp_protocol.hpp"
+#include "horopter/hardware/transport.hpp"
+
+namespace horopter::hw {
+
+enum class SimRmpFault {
+  kNone,
+  kSilent,        // sends no status (the driver must time out)
+  kBadLength,     // a status frame with 3 data bytes
+  kMissingFrame,  // a series without 0x404
+};
+
+struct SimRmpOptions {
+  rmp::Scaling scaling = rmp::scalingRmp200();
+  std::chrono::milliseconds period{10};  // status series rate (100 Hz)
+  double trackWidth = 0.54;              // m, wheel to wheel (for the wheel speeds)
+  bool startThread = true;
+};
+
+struct SimRmpTruth {
+  double x = 0, y = 0, heading = 0;
+  BaseVelocity velocity;
+  long motionFrames = 0;
+  long resets = 0;
+};
+
+class SimRmp {
+ public:
+  SimRmp(CanTransport& bus, SimRmpOptions options = {});
+  ~SimRmp();
+  SimRmp(const SimRmp&) = delete;
+  SimRmp& operator=(const SimRmp&) = delete;
+
+  // One cycle: read commands, integrate since the last step, report a series.
+  void step(Clock::time_point now);
+  void injectFault(SimRmpFault fault, int series);
+  SimRmpTruth truth() const;
+  void stop();
+
+ private:
+  void run();
+  CanTransport& bus_;
+  SimRmpOptions options_;
+  mutable std::mutex mutex_;
+  rmp::Status reported_;
+  SimRmpTruth truth_;
+  BaseVelocity commanded_;
+  bool haveTime_ = false;
+  Clock::time_point last_{};
+  SimRmpFault fault_ = SimRmpFault::kNone;
+  int faultSeries_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace horopter::hw
