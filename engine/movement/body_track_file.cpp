@@ -1,0 +1,108 @@
+// Recorded tracks as CSV; see include/horopter/body_track_file.hpp.
+#include "horopter/body_track_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+namespace {
+
+constexpr const char* kMagic = "# horopter-body-track 1";
+constexpr int kColumns = 3 + 3 * 7;
+
+std::string header() {
+  std::string h = "frame,time_s,godfather";
+  for (const char* part : {"head", "left_hand", "right_hand"})
+    for (const char* field : {"tracked", "observed", "u", "v", "x", "y", "z"})
+      h += std::string(",") + part + "_" + field;
+  return h;
+}
+
+}  // namespace
+
+void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write the track file '" + path + "'");
+  out << kMagic << '\n' << header() << '\n';
+  char buf[160];
+  for (const BodySample& s : samples) {
+    std::snprintf(buf, sizeof buf, "%lld,%.6f,%d", static_cast<long long>(s.frame), s.timeS,
+                  s.godfather ? 1 : 0);
+    out << buf;
+    for (const PartState* p : {&s.head, &s.leftHand, &s.rightHand}) {
+      std::snprintf(buf, sizeof buf, ",%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f", p->tracked ? 1 : 0,
+                    p->observed ? 1 : 0, p->image.x, p->image.y, p->rig.x, p->rig.y, p->rig.z);
+      out << buf;
+    }
+    out << '\n';
+  }
+  if (!out) throw Error("writing the track file '" + path + "' failed");
+}
+
+std::vector<BodySample> readBodyTrack(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error("track file '" + path + "' does not exist");
+  std::ifstream in(path);
+  if (!in) throw Error("cannot read the track file '" + path + "'");
+  std::string line;
+  int lineNo = 0;
+  auto fail = [&](const std::string& what) {
+    throw Error("track file '" + path + "' line " + std::to_string(lineNo) + ": " + what);
+  };
+  std::getline(in, line);
+  ++lineNo;
+  if (line != kMagic)
+    fail(std::string("not a horopter body track (the first line must be '") + kMagic + "')");
+  std::getline(in, line);
+  ++lineNo;
+  if (line != header()) fail("unexpected column header");
+  std::vector<BodySample> samples;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty()) continue;
+    std::vector<double> v;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) {
+      if (cell == "nan" || cell == "-nan") {
+        v.push_back(std::nan(""));
+        continue;
+      }
+      std::size_t used = 0;
+      double x = 0;
+      try {
+        x = std::stod(cell, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != cell.size() || cell.empty()) fail("'" + cell + "' is not a number");
+      v.push_back(x);
+    }
+    if (static_cast<int>(v.size()) != kColumns)
+      fail(std::to_string(v.size()) + " columns, expected " + std::to_string(kColumns));
+    BodySample s;
+    s.frame = static_cast<std::int64_t>(v[0]);
+    s.timeS = v[1];
+    s.godfather = v[2] != 0;
+    if (!std::isfinite(s.timeS)) fail("time_s must be finite");
+    int c = 3;
+    for (PartState* p : {&s.head, &s.leftHand, &s.rightHand}) {
+      p->tracked = v[c] != 0;
+      p->observed = v[c + 1] != 0;
+      p->image = {static_cast<float>(v[c + 2]), static_cast<float>(v[c + 3])};
+      p->rig = {static_cast<float>(v[c + 4]), static_cast<float>(v[c + 5]),
+                static_cast<float>(v[c + 6])};
+      c += 7;
+    }
+    if (!samples.empty() && !(s.timeS > samples.back().timeS))
+      fail("time_s must increase from line to line");
+    samples.push_back(s);
+  }
+  return samples;
+}
+
+}  // namespace horopter

@@ -1,0 +1,23 @@
+// A recorded track: one BodySample per line of a CSV file, what
+// `horopter classify --track FILE` reads (and --write-track writes).
+//
+//   # horopter-body-track 1
+//   frame,time_s,godfather,<part>_tracked,<part>_observed,<part>_u,<part>_v,
+//     <part>_x,<part>_y,<part>_z   for part = head, left_hand, right_hand
+//
+// u, v: left rectified image, pixels; x, y, z: rig frame, metres ("nan" when
+// the depth is unknown); flags 0 or 1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "horopter/body.hpp"
+
+namespace horopter {
+
+void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples);
+// Throws horopter::Error naming the file and line for a malformed file.
+std::vector<BodySample> readBodyTrack(const std::string& path);
+
+}  // namespace horopter
