@@ -140,9 +140,9 @@ std::vector<dxl::Status> DynamixelHead::exchange(const std::vector<std::uint8_t>
         got.push_back(s);
         continue;
       }
-      const auto left =
-          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-      if (left.count() <= 0) break;
+      const auto now = Clock::now();
+      if (now >= deadline) break;
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
       const auto more = transport_->read(256, left);
       rx_.insert(rx_.end(), more.begin(), more.end());
     }

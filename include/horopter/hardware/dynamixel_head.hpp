@@ -75,7 +75,7 @@ class DynamixelHead final : public Head {
   std::vector<std::uint8_t> ids_;
   std::vector<int> modelNumbers_;
   std::vector<std::uint8_t> rx_;
-  long sentGeneration_ = -1;  // thread-only
+  long sentGeneration_ = 0;  // thread-only; nothing is sent before the first command()
 
   mutable std::mutex mutex_;
   HeadAngles target_;
