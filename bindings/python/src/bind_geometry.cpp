@@ -1,0 +1,102 @@
+// The geometry of the zone of interaction: fixation points, the
+// Vieth-Mueller circle, depth, and the per-column threshold table.
+// 3-D points are numpy float64 arrays of 3 (cyclopean frame).
+#include <pybind11/eigen.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "horopter/geometry.hpp"
+
+namespace horopter::python {
+
+namespace {
+
+py::array_t<std::int16_t> thresholdsForCircle(const RectifiedGeometry& g,
+                                              const ViethMuellerCircle& circle, int width) {
+  if (width <= 0) throw py::value_error("width must be positive, got " + std::to_string(width));
+  py::array_t<std::int16_t> out(width);
+  horopterThresholds(g, circle, {out.mutable_data(), static_cast<std::size_t>(width)});
+  return out;
+}
+
+py::array_t<std::int16_t> thresholdsForFixation(const RectifiedGeometry& g, int width,
+                                                const FixationPoint& fixation) {
+  const std::vector<std::int16_t> table = horopterThresholds(g, width, fixation);
+  py::array_t<std::int16_t> out(static_cast<py::ssize_t>(table.size()));
+  std::copy(table.begin(), table.end(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+void bindGeometry(py::module_& m) {
+  py::class_<RectifiedGeometry>(m, "RectifiedGeometry",
+                                "A rectified pair: focal length and principal point (px), "
+                                "baseline (any length unit)")
+      .def(py::init([](double focalPx, double cx, double baseline, double cy) {
+             return RectifiedGeometry{focalPx, cx, baseline, cy};
+           }),
+           py::arg("focal_px"), py::arg("cx"), py::arg("baseline"), py::arg("cy") = 0.0)
+      .def_readwrite("focal_px", &RectifiedGeometry::focalPx)
+      .def_readwrite("cx", &RectifiedGeometry::cx)
+      .def_readwrite("cy", &RectifiedGeometry::cy)
+      .def_readwrite("baseline", &RectifiedGeometry::baseline)
+      .def("__repr__", [](const RectifiedGeometry& g) {
+        return "RectifiedGeometry(focal_px=" + std::to_string(g.focalPx) +
+               ", cx=" + std::to_string(g.cx) + ", baseline=" + std::to_string(g.baseline) +
+               ", cy=" + std::to_string(g.cy) + ")";
+      });
+
+  py::class_<FixationPoint>(m, "FixationPoint", "A fixation in the left camera frame")
+      .def(py::init([](double x, double z) {
+             return FixationPoint{x, z};
+           }),
+           py::arg("x"), py::arg("z"))
+      .def_readwrite("x", &FixationPoint::x)
+      .def_readwrite("z", &FixationPoint::z);
+
+  py::class_<ViethMuellerCircle>(m, "ViethMuellerCircle",
+                                 "The circle through both camera centres and the fixation")
+      .def_readonly("centre_z", &ViethMuellerCircle::centreZ)
+      .def_readonly("radius", &ViethMuellerCircle::radius)
+      .def_property_readonly(
+          "fixation", [](const ViethMuellerCircle& c) { return Eigen::Vector2d(c.fixation); });
+
+  m.def("fixation_from_disparity", &fixationFromDisparity, py::arg("geometry"), py::arg("u"),
+        py::arg("disparity_px"), "The fixation seen at column u with this disparity (px)");
+  m.def("fixation_from_vergence", &fixationFromVergence, py::arg("baseline"),
+        py::arg("vergence_rad"));
+  m.def("fixation_from_pan_angles", &fixationFromPanAngles, py::arg("baseline"),
+        py::arg("left_pan_rad"), py::arg("right_pan_rad"));
+  m.def("fixation_at_distance", &fixationAtDistance, py::arg("baseline"), py::arg("distance"));
+  m.def("vieth_mueller_circle", &viethMuellerCircle, py::arg("baseline"), py::arg("fixation"));
+  m.def("inside_zone", &insideZone, py::arg("circle"), py::arg("point"));
+  m.def("vergence_angle_at", &vergenceAngleAt, py::arg("baseline"), py::arg("point"));
+  m.def("depth_from_disparity", &depthFromDisparity, py::arg("geometry"), py::arg("disparity_px"),
+        "z = f B / d");
+  m.def("point_from_pixel", &pointFromPixel, py::arg("geometry"), py::arg("u"), py::arg("v"),
+        py::arg("disparity_px"), "The 3-D point (cyclopean frame) of a left pixel");
+  m.def("to_left_camera_frame", &toLeftCameraFrame, py::arg("geometry"), py::arg("point"));
+  m.def("horopter_thresholds", &thresholdsForFixation, py::arg("geometry"), py::arg("width"),
+        py::arg("fixation"),
+        "int16 (width,): per column, the smallest disparity (1/16 px) inside the zone");
+  m.def("horopter_thresholds", &thresholdsForCircle, py::arg("geometry"), py::arg("circle"),
+        py::arg("width"));
+  m.def(
+      "zone_extent",
+      [](double baseline, const ViethMuellerCircle& circle) {
+        const ZoneExtent e = zoneExtent(baseline, circle);
+        py::dict d;
+        d["radius"] = e.radius;
+        d["centre_z"] = e.centreZ;
+        d["far_on_axis"] = e.farOnAxis;
+        d["far_on_camera"] = e.farOnCamera;
+        d["widest_z"] = e.widestZ;
+        d["widest"] = e.widest;
+        return d;
+      },
+      py::arg("baseline"), py::arg("circle"));
+  m.def("zone_width_at", &zoneWidthAt, py::arg("circle"), py::arg("z"));
+}
+
+}  // namespace horopter::python

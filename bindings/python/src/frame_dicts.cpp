@@ -1,0 +1,102 @@
+#include "frame_dicts.hpp"
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+
+namespace horopter::python {
+
+namespace {
+
+py::tuple point(const cv::Point2f& p) {
+  return py::make_tuple(p.x, p.y);
+}
+py::tuple point(const cv::Point3f& p) {
+  return py::make_tuple(p.x, p.y, p.z);
+}
+
+py::dict partDict(const PartState& part) {
+  py::dict d;
+  d["tracked"] = part.tracked;
+  d["observed"] = part.observed;
+  d["image"] = point(part.image);
+  d["rig"] = point(part.rig);
+  return d;
+}
+
+py::dict personDict(const synth::PersonTruth& p) {
+  py::dict d;
+  d["id"] = p.id;
+  d["visible"] = p.visible;
+  d["inside_zone"] = p.insideZone;
+  d["head_2d"] = point(p.head2d);
+  d["left_hand_2d"] = point(p.leftHand2d);
+  d["right_hand_2d"] = point(p.rightHand2d);
+  d["head_3d"] = point(p.head3d);
+  d["left_hand_3d"] = point(p.leftHand3d);
+  d["right_hand_3d"] = point(p.rightHand3d);
+  d["face_width_px"] = p.faceWidthPx;
+  d["movement"] = synth::movementName(p.movement);
+  return d;
+}
+
+}  // namespace
+
+py::dict bodyDict(const BodySample& body) {
+  py::dict d;
+  d["frame"] = body.frame;
+  d["time_s"] = body.timeS;
+  d["godfather"] = body.godfather;
+  d["head"] = partDict(body.head);
+  d["left_hand"] = partDict(body.leftHand);
+  d["right_hand"] = partDict(body.rightHand);
+  return d;
+}
+
+py::dict truthDict(const synth::FrameTruth& truth) {
+  py::dict d;
+  d["index"] = truth.index;
+  d["time_s"] = truth.timeS;
+  d["disparity"] = shareMat(truth.disparity);
+  d["inside"] = shareMat(truth.inside);
+  d["occluded"] = shareMat(truth.occluded);
+  py::list people;
+  for (const auto& p : truth.people)
+    people.append(personDict(p));
+  d["people"] = people;
+  py::dict head;
+  head["pan"] = truth.head.pan;
+  head["tilt"] = truth.head.tilt;
+  head["vergence"] = truth.head.vergence;
+  d["head"] = head;
+  d["fixation_distance_m"] = truth.fixationDistanceM;
+  return d;
+}
+
+py::dict frameDict(const Frame& frame) {
+  py::dict d;
+  d["index"] = frame.index;
+  d["left"] = shareMat(frame.left);
+  d["right"] = shareMat(frame.right);
+  d["left_grey"] = shareMat(frame.leftGrey);
+  d["right_grey"] = shareMat(frame.rightGrey);
+  d["disparity"] = shareMat(frame.disparity);
+  d["mask"] = shareMat(frame.mask);
+  py::array_t<std::int16_t> thresholds(static_cast<py::ssize_t>(frame.thresholds.size()));
+  std::copy(frame.thresholds.begin(), frame.thresholds.end(), thresholds.mutable_data());
+  d["thresholds"] = thresholds;
+  d["body"] = bodyDict(frame.body);
+  const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth);
+  d["truth"] = truth ? py::object(truthDict(*truth)) : py::none();
+  // ---- The interaction half (issues 7 and 8) -------------------------------
+  // Frame::detections, ::tracking and ::movement are filled by stages whose
+  // headers (horopter/detection.hpp, tracking.hpp, movement.hpp) have not
+  // landed yet: when they do, turn each into a plain dict here (faces, hands,
+  // tracks with ids, the movement posterior and decision).
+  d["detections"] = py::none();
+  d["tracking"] = py::none();
+  d["movement"] = py::none();
+  return d;
+}
+
+}  // namespace horopter::python

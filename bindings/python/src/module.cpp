@@ -1,0 +1,27 @@
+// The `horopter` Python module. Kernels and the front end release the GIL
+// while they run, so several Python threads compute at once.
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "horopter/error.hpp"
+
+PYBIND11_MODULE(horopter, m) {
+  namespace py = pybind11;
+  m.doc() =
+      "Horopter: stereo disparity (OpenCV StereoBM's parameters), the horopter mask of the zone "
+      "of interaction, calibration, geometry and the frame pipeline, on numpy arrays without "
+      "copying the inputs.";
+  // horopter::Error (bad input or a failed operation, with a message that
+  // says what to fix) becomes horopter.Error, a ValueError.
+  py::register_exception<horopter::Error>(m, "Error", PyExc_ValueError);
+#ifdef HOROPTER_VERSION_STRING
+  m.attr("__version__") = HOROPTER_VERSION_STRING;
+#endif
+  horopter::python::bindStereo(m);
+  horopter::python::bindKernels(m);
+  horopter::python::bindSystem(m);
+  horopter::python::bindGeometry(m);
+  horopter::python::bindCalibration(m);
+  horopter::python::bindScene(m);
+  horopter::python::bindPipeline(m);
+}

@@ -1,0 +1,80 @@
+#include "pipeline_zone.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "horopter/calibration.hpp"
+#include "horopter/capture.hpp"
+#include "horopter/error.hpp"
+#include "horopter/geometry.hpp"
+
+namespace horopter::python {
+
+namespace {
+
+ZoneSetup calibrated(const ZoneOptions& zone) {
+  const StereoCalibration calibration = loadStereoCalibration(zone.calib);
+  auto rectifier = std::make_shared<StereoRectifier>(calibration);
+  ZoneSetup setup;
+  setup.rectify = [rectifier](const cv::Mat& l, const cv::Mat& r, cv::Mat& lo, cv::Mat& ro) {
+    rectifier->rectify(l, r);
+    lo = rectifier->left().clone();  // the rectifier reuses its buffers
+    ro = rectifier->right().clone();
+  };
+  const RectifiedGeometry g = rectifiedGeometry(calibration);
+  const ViethMuellerCircle circle =
+      viethMuellerCircle(g.baseline, fixationAtDistance(g.baseline, zone.fixation));
+  setup.thresholds = [g, circle](const Frame&, std::vector<std::int16_t>& out) {
+    horopterThresholds(g, circle, out);
+  };
+  return setup;
+}
+
+// The synthetic scene's rig and the vergence each frame was rendered with.
+ThresholdFunction syntheticThresholds(const synth::SyntheticScene& scene) {
+  const RectifiedGeometry g{scene.focalPx(), scene.cx(), scene.baselineM(), scene.cy()};
+  return [g](const Frame& f, std::vector<std::int16_t>& out) {
+    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!truth) throw Error("a synthetic frame without its truth");
+    if (!(truth->head.vergence > 1e-9)) {
+      std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front
+      return;
+    }
+    horopterThresholds(
+        g, viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence)),
+        out);
+  };
+}
+
+ThresholdFunction disparityThresholds(const ZoneOptions& zone, const StereoParams& stereo) {
+  const double fixation =
+      zone.fixationDisparity.value_or(stereo.minDisparity + stereo.numDisparities / 2.0);
+  if (!(fixation > 0 && std::isfinite(fixation)))
+    throw Error(
+        "the fixation disparity must be a positive number of pixels: pass "
+        "fixation_disparity=D with D > 0");
+  const std::optional<double> focal = zone.focalPx;
+  return [fixation, focal](const Frame& f, std::vector<std::int16_t>& out) {
+    RectifiedGeometry g;
+    g.focalPx = focal.value_or(f.disparity.cols);
+    g.cx = (f.disparity.cols - 1) / 2.0;
+    g.cy = (f.disparity.rows - 1) / 2.0;
+    g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
+    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
+  };
+}
+
+}  // namespace
+
+ZoneSetup zoneSetup(FrameSource& source, const ZoneOptions& zone, const StereoParams& stereo) {
+  if (!zone.calib.empty()) return calibrated(zone);
+  ZoneSetup setup;
+  if (auto* synthetic = dynamic_cast<SyntheticSource*>(&source))
+    setup.thresholds = syntheticThresholds(synthetic->scene());
+  else
+    setup.thresholds = disparityThresholds(zone, stereo);
+  return setup;
+}
+
+}  // namespace horopter::python

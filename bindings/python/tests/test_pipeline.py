@@ -1,0 +1,72 @@
+"""The frame pipeline iterated from Python: arrays and plain dicts per frame."""
+import numpy as np
+import pytest
+
+import horopter
+
+
+def test_synthetic_frames_in_order_with_arrays_and_dicts():
+    params = horopter.StereoParams(numDisparities=48)
+    with horopter.Pipeline("synthetic", frames=4, size=(160, 120), params=params,
+                           backend="scalar", in_flight=2) as pipeline:
+        frames = list(pipeline)
+        summary = pipeline.summary
+    assert [f["index"] for f in frames] == [0, 1, 2, 3]
+    for f in frames:
+        assert f["left"].shape == (120, 160, 3) and f["left"].dtype == np.uint8
+        assert f["disparity"].shape == (120, 160) and f["disparity"].dtype == np.int16
+        assert f["mask"].shape == (120, 160) and f["mask"].dtype == np.uint8
+        assert f["thresholds"].shape == (160,) and f["thresholds"].dtype == np.int16
+        assert set(f["body"]) == {"frame", "time_s", "godfather", "head", "left_hand", "right_hand"}
+        assert set(f["body"]["head"]) == {"tracked", "observed", "image", "rig"}
+        assert f["truth"]["head"]["vergence"] > 0
+        assert isinstance(f["truth"]["people"], list) and f["truth"]["people"]
+        # Placeholders until detection, tracking and movement stages land.
+        assert f["detections"] is None and f["tracking"] is None and f["movement"] is None
+    assert summary["frames"] == 4
+
+
+def test_pipeline_results_equal_the_matcher_on_the_same_frame():
+    params = horopter.StereoParams(numDisparities=48)
+    pipeline = horopter.Pipeline("synthetic", frames=2, size=(160, 120), params=params,
+                                 backend="auto", threads=2)
+    matcher = horopter.StereoMatcher(params, backend="scalar")
+    for f in pipeline:
+        np.testing.assert_array_equal(matcher.compute(f["left_grey"], f["right_grey"]),
+                                      f["disparity"])
+        mask, _ = matcher.compute_mask(f["thresholds"])
+        np.testing.assert_array_equal(mask, f["mask"])
+
+
+def test_stopping_early_and_errors():
+    pipeline = horopter.Pipeline("synthetic", frames=50, size=(96, 72), numDisparities=16)
+    first = next(pipeline)
+    assert first["index"] == 0
+    pipeline.close()  # stops capture; must not hang with frames still queued
+    assert list(pipeline) == []
+    with pytest.raises(horopter.Error, match="nosuch"):
+        horopter.Pipeline("nosuch:thing", frames=1)
+    with pytest.raises(ValueError, match="frames"):
+        horopter.Pipeline("synthetic", frames=0)
+
+
+def test_folder_source_and_its_errors(tmp_path, grey_pair):
+    left, right = grey_pair
+    for i in range(2):
+        horopter.imwrite(str(tmp_path / f"left{i}.png"), left)
+        horopter.imwrite(str(tmp_path / f"right{i}.png"), right)
+    frames = list(horopter.Pipeline(f"dir:{tmp_path}", numDisparities=64, backend="scalar"))
+    assert len(frames) == 2
+    expected = horopter.StereoMatcher(numDisparities=64, backend="scalar").compute(left, right)
+    np.testing.assert_array_equal(frames[1]["disparity"], expected)
+
+
+def test_synthetic_scene_truth():
+    scene = horopter.SyntheticScene(width=160, height=120)
+    frame = scene.render(0)
+    assert frame["left"].shape == (120, 160, 3)
+    truth = frame["truth"]
+    assert truth["disparity"].dtype == np.int16 and truth["inside"].dtype == np.uint8
+    assert scene.geometry.focal_px == pytest.approx(scene.focal_px)
+    with pytest.raises(horopter.Error):
+        scene.command_head(0.0, 0.0, 3.0)

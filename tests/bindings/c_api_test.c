@@ -1,0 +1,180 @@
+/* The C API from C: a known shift through the matcher, the mask against the
+ * threshold table, and every kind of bad input answered by a status and a
+ * message (no crash, no exception). Prints "N passed, N failed". */
+#include <horopter/horopter.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int passed = 0, failed = 0;
+
+#define CHECK(cond)                                                      \
+  do {                                                                   \
+    if (cond) {                                                          \
+      ++passed;                                                          \
+    } else {                                                             \
+      ++failed;                                                          \
+      fprintf(stderr, "%s:%d: FAILED: %s\n", __FILE__, __LINE__, #cond); \
+    }                                                                    \
+  } while (0)
+
+/* Random texture; the right view is the left shifted by `shift` pixels. */
+static void make_pair(unsigned char* left, unsigned char* right, int w, int h, int shift) {
+  unsigned state = 12345u;
+  for (int i = 0; i < w * h; ++i) {
+    state = state * 1103515245u + 12345u;
+    left[i] = (unsigned char)(state >> 16);
+  }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      right[y * w + x] = left[y * w + (x + shift < w ? x + shift : w - 1)];
+}
+
+static void test_version_and_backends(void) {
+  CHECK(strlen(horopter_version()) >= 5);
+  const int n = horopter_backend_count();
+  CHECK(n >= 1);
+  int scalar_found = 0;
+  for (int i = 0; i < n; ++i) {
+    const char* name = NULL;
+    int available = -1;
+    CHECK(horopter_backend_info(i, &name, &available) == HOROPTER_OK);
+    CHECK(name != NULL && (available == 0 || available == 1));
+    if (name && strcmp(name, "scalar") == 0) scalar_found = available;
+  }
+  CHECK(scalar_found == 1);
+  CHECK(horopter_backend_info(n, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "out of range") != NULL);
+}
+
+static void test_known_shift(void) {
+  enum { W = 96, H = 48, SHIFT = 7 };
+  unsigned char* left = malloc(W * H);
+  unsigned char* right = malloc(W * H);
+  make_pair(left, right, W, H, SHIFT);
+
+  horopter_stereo_params params;
+  horopter_stereo_params_default(&params);
+  params.num_disparities = 16;
+  params.block_size = 5;
+  horopter_matcher* matcher = NULL;
+  CHECK(horopter_matcher_create(&params, "scalar", 2, &matcher) == HOROPTER_OK);
+  CHECK(matcher != NULL);
+  CHECK(strcmp(horopter_matcher_backend(matcher), "scalar") == 0);
+
+  horopter_image l = {left, W, H, W, HOROPTER_U8C1};
+  horopter_image r = {right, W, H, W, HOROPTER_U8C1};
+  CHECK(horopter_matcher_compute(matcher, &l, &r) == HOROPTER_OK);
+  horopter_image disparity;
+  CHECK(horopter_matcher_disparity(matcher, &disparity) == HOROPTER_OK);
+  CHECK(disparity.width == W && disparity.height == H && disparity.type == HOROPTER_S16C1);
+  /* Away from the borders every pixel finds the shift: 7 px = 112/16, within
+   * the sub-pixel fit's half pixel. */
+  int found = 0, total = 0;
+  for (int y = 8; y < H - 8; ++y) {
+    const int16_t* row = (const int16_t*)((const char*)disparity.data + y * disparity.stride_bytes);
+    for (int x = 24; x < W - 8; ++x, ++total)
+      found += abs(row[x] - SHIFT * 16) <= 8;
+  }
+  CHECK(total > 0 && found == total);
+
+  /* Mask: a fixation disparity between 5 and 9 px keeps the 7-px plane only
+   * where its column's threshold is <= 112. */
+  int16_t thresholds[W];
+  horopter_geometry g = {W, (W - 1) / 2.0, (H - 1) / 2.0, 1.0};
+  CHECK(horopter_thresholds_from_disparity(&g, g.cx, 5.0, thresholds, W) == HOROPTER_OK);
+  CHECK(horopter_matcher_mask(matcher, thresholds, W, &l) == HOROPTER_OK);
+  horopter_image mask, segmented;
+  CHECK(horopter_matcher_mask_result(matcher, &mask, &segmented) == HOROPTER_OK);
+  CHECK(segmented.data != NULL && segmented.type == HOROPTER_U8C1);
+  int agree = 1;
+  for (int y = 0; y < H; ++y) {
+    const int16_t* d = (const int16_t*)((const char*)disparity.data + y * disparity.stride_bytes);
+    const unsigned char* m = (const unsigned char*)mask.data + y * mask.stride_bytes;
+    const unsigned char* s = (const unsigned char*)segmented.data + y * segmented.stride_bytes;
+    for (int x = 0; x < W; ++x) {
+      const int inside = d[x] != (params.min_disparity - 1) * 16 && d[x] >= thresholds[x];
+      agree &= m[x] == (inside ? 255 : 0);
+      agree &= s[x] == (inside ? left[y * W + x] : 0);
+    }
+  }
+  CHECK(agree);
+  horopter_matcher_destroy(matcher);
+  free(left);
+  free(right);
+}
+
+static void test_bad_input(void) {
+  horopter_stereo_params params;
+  horopter_stereo_params_default(&params);
+  horopter_matcher* matcher = NULL;
+
+  params.block_size = 8;
+  CHECK(horopter_matcher_create(&params, "scalar", 1, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(matcher == NULL);
+  CHECK(strstr(horopter_last_error(), "blockSize") != NULL);
+  horopter_stereo_params_default(&params);
+
+  CHECK(horopter_matcher_create(&params, "no-such-backend", 1, &matcher) ==
+        HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strlen(horopter_last_error()) > 0);
+  CHECK(horopter_matcher_create(&params, NULL, 0, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_create(NULL, NULL, 1, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "params is NULL") != NULL);
+
+  CHECK(horopter_matcher_create(&params, NULL, 1, &matcher) == HOROPTER_OK);
+  horopter_image out;
+  CHECK(horopter_matcher_disparity(matcher, &out) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "compute first") != NULL);
+
+  unsigned char pixels[96 * 32] = {0};
+  horopter_image a = {pixels, 96, 32, 96, HOROPTER_U8C1};
+  horopter_image narrow = {pixels, 32, 32, 32, HOROPTER_U8C1};
+  horopter_image wrong_type = {pixels, 32, 32, 96, HOROPTER_S16C1};
+  horopter_image bad_stride = {pixels, 96, 32, 10, HOROPTER_U8C1};
+  horopter_image null_data = {NULL, 96, 32, 96, HOROPTER_U8C1};
+  horopter_image bad_enum = {pixels, 96, 32, 96, (horopter_pixel_type)7};
+  CHECK(horopter_matcher_compute(matcher, &a, &narrow) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(matcher, &a, &wrong_type) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "S16C1") != NULL);
+  CHECK(horopter_matcher_compute(matcher, &a, &bad_stride) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(matcher, &null_data, &a) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(matcher, &bad_enum, &a) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(matcher, NULL, &a) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(NULL, &a, &a) == HOROPTER_ERROR_INVALID_ARGUMENT);
+
+  unsigned char small[64 * 32] = {0};
+  horopter_image too_small = {small, 64, 32, 64, HOROPTER_U8C1};
+  CHECK(horopter_matcher_compute(matcher, &too_small, &too_small) ==
+        HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "reduce numDisparities") != NULL);
+  CHECK(horopter_matcher_compute(matcher, &a, &a) == HOROPTER_OK);
+  int16_t table[96] = {0};
+  CHECK(horopter_matcher_mask(matcher, table, 10, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_mask(matcher, table, 96, NULL) == HOROPTER_OK);
+  horopter_image mask, segmented;
+  CHECK(horopter_matcher_mask_result(matcher, &mask, &segmented) == HOROPTER_OK);
+  CHECK(segmented.data == NULL);
+  horopter_matcher_destroy(matcher);
+  horopter_matcher_destroy(NULL);
+
+  horopter_geometry g = {100, 50, 30, 0.1};
+  CHECK(horopter_thresholds_at_distance(&g, -1.0, table, 64) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_thresholds_at_distance(&g, 1.0, table, 0) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_thresholds_at_distance(&g, 1.0, table, 64) == HOROPTER_OK);
+  CHECK(table[32] > 0);
+  CHECK(horopter_thresholds_from_disparity(NULL, 0, 1, table, 64) ==
+        HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_geometry_from_calibration("/no/such/calib.yml", &g) == HOROPTER_ERROR_FAILED);
+  CHECK(strstr(horopter_last_error(), "/no/such/calib.yml") != NULL);
+  CHECK(strcmp(horopter_status_name(HOROPTER_ERROR_FAILED), "failed") == 0);
+}
+
+int main(void) {
+  test_version_and_backends();
+  test_known_shift();
+  test_bad_input();
+  printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
+}
