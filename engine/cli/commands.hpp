@@ -13,6 +13,8 @@ int runDevices(Args& args);
 int runCalibrate(Args& args);
 int runRectify(Args& args);
 int runGeometry(Args& args);
+int runHead(Args& args);
+int runBase(Args& args);
 int runTrain(Args& args);
 int runClassify(Args& args);
 int runProfile(Args& args);

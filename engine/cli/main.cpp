@@ -27,6 +27,9 @@ const char* kUsage =
     "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n"
     "  geometry      the zone of interaction of a calibrated head for a fixation (+ top-down "
     "PNG)\n"
+    "  head          move the pan-tilt(-vergence) head (DYNAMIXEL 2.0 or FLIR PTU, or --sim)\n"
+    "                and print the measured angles\n"
+    "  base          drive the Segway RMP base (SocketCAN, USB or --sim) and print odometry\n"
     "  profile       per-stage time of the front end on each backend (OpenCL: device time of\n"
     "                upload, each kernel, download)\n";
 
@@ -51,6 +54,8 @@ int main(int argc, char** argv) {
     if (command == "calibrate") return runCalibrate(args);
     if (command == "rectify") return runRectify(args);
     if (command == "geometry") return runGeometry(args);
+    if (command == "head") return runHead(args);
+    if (command == "base") return runBase(args);
     if (command == "profile") return runProfile(args);
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
     return 2;

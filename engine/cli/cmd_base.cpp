@@ -1,0 +1,157 @@
+// `horopter base`: drive a Segway RMP (SocketCAN, its USB interface, or the
+// simulator) at a velocity for a while and print the odometry.
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "commands.hpp"
+#include "horopter/error.hpp"
+#include "horopter/hardware/can_transports.hpp"
+#include "horopter/hardware/rmp_base.hpp"
+#include "horopter/hardware/serial_port.hpp"
+#include "horopter/hardware/sim_rmp.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+std::atomic<bool> gBaseInterrupted{false};
+extern "C" void onBaseInterrupt(int) {
+  gBaseInterrupted.store(true);
+}
+
+const char* kBaseHelp =
+    "Usage: horopter base (--can IF | --usb DEV | --sim) [options]\n\n"
+    "Drives the Segway RMP at a velocity for a duration, sending the command at 20 Hz as the\n"
+    "pipeline would (the driver's own 200 ms watchdog stops the base if commands stop), then\n"
+    "stops it and prints the odometry from the RMP's status frames. Ctrl-C stops at once.\n\n"
+    "  --can IF            SocketCAN interface, e.g. can0\n"
+    "  --usb DEV           the RMP's USB interface as a serial device, e.g. /dev/ttyUSB1\n"
+    "  --baud N            --usb baud rate (default 460800, as libsegwayrmp)\n"
+    "  --sim               a simulated RMP on an in-process CAN bus\n"
+    "  --model M           rmp200 (default), rmp400, rmp100 or rmp50 (the counts scaling)\n"
+    "  --linear V          m/s forward (default 0)\n"
+    "  --angular W         rad/s, positive turns left (default 0)\n"
+    "  --duration S        seconds (default 2, at most 60)\n"
+    "  --max-linear V      safety limit, m/s (default 0.5)\n"
+    "  --max-angular W     safety limit, rad/s (default 1.0)\n"
+    "  --estop             engage the latching emergency stop first: the base is held at zero\n"
+    "                      (commands are ignored) and the state is printed\n"
+    "  --json              one JSON object per printed reading\n";
+
+void print(const std::optional<hw::Odometry>& o, const hw::BaseHealth& h, double t, bool estop,
+           bool json) {
+  char line[320];
+  if (!o) {
+    std::snprintf(line, sizeof line,
+                  json ? "{\"t\": %.2f, \"odometry\": null, \"estop\": %s}"
+                       : "t=%5.2fs  no status from the base yet  estop=%s",
+                  t, estop ? "true" : "false");
+  } else if (json) {
+    std::snprintf(
+        line, sizeof line,
+        "{\"t\": %.2f, \"x\": %.4f, \"y\": %.4f, \"heading\": %.4f, \"linear\": %.3f, "
+        "\"angular\": %.3f, \"sent_linear\": %.3f, \"sent_angular\": %.3f, \"estop\": %s, "
+        "\"status_fresh\": %s}",
+        t, o->x, o->y, o->heading, o->velocity.linear, o->velocity.angular, h.lastSent.linear,
+        h.lastSent.angular, estop ? "true" : "false", h.statusFresh ? "true" : "false");
+  } else {
+    std::snprintf(line, sizeof line,
+                  "t=%5.2fs  x=%+.3f m  y=%+.3f m  heading=%+.3f rad  v=%+.3f m/s  w=%+.3f rad/s  "
+                  "sent v=%+.3f w=%+.3f%s",
+                  t, o->x, o->y, o->heading, o->velocity.linear, o->velocity.angular,
+                  h.lastSent.linear, h.lastSent.angular, estop ? "  E-STOP" : "");
+  }
+  std::cout << line << std::endl;
+}
+
+}  // namespace
+
+int runBase(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << kBaseHelp;
+    return 0;
+  }
+  const auto can = args.value("--can");
+  const auto usb = args.value("--usb");
+  const bool sim = args.flag("--sim");
+  const int baud = args.intValue("--baud", 460800);
+  const std::string model = args.stringValue("--model", "rmp200");
+  const double linear = args.doubleValue("--linear", 0);
+  const double angular = args.doubleValue("--angular", 0);
+  const double duration = args.doubleValue("--duration", 2);
+  hw::RmpBaseOptions options;
+  options.scaling = hw::rmp::scalingByName(model);
+  options.limits.maxLinear = args.doubleValue("--max-linear", options.limits.maxLinear);
+  options.limits.maxAngular = args.doubleValue("--max-angular", options.limits.maxAngular);
+  const bool estop = args.flag("--estop");
+  const bool json = args.flag("--json");
+  args.finish("base");
+  if (int(can.has_value()) + int(usb.has_value()) + int(sim) != 1)
+    throw Error("give exactly one of --can IF, --usb DEV or --sim");
+  if (!(duration > 0 && duration <= 60)) throw Error("--duration must be in (0, 60] s");
+  if (!std::isfinite(linear) || !std::isfinite(angular))
+    throw Error("--linear/--angular must be numbers");
+  hw::validate(options.limits);
+  if (std::abs(linear) > options.limits.maxLinear || std::abs(angular) > options.limits.maxAngular)
+    std::cerr << "base: the command exceeds the safety limits and will be clamped to "
+              << options.limits.maxLinear << " m/s, " << options.limits.maxAngular << " rad/s\n";
+
+  std::unique_ptr<hw::InProcessCanBus> bus;
+  std::unique_ptr<hw::SimRmp> simRmp;
+  std::unique_ptr<hw::CanTransport> transport;
+  if (sim) {
+    bus = std::make_unique<hw::InProcessCanBus>();
+    hw::SimRmpOptions so;
+    so.scaling = options.scaling;
+    simRmp = std::make_unique<hw::SimRmp>(bus->deviceSide(), so);
+    transport = bus->takeHostSide();
+  } else if (can) {
+    transport = std::make_unique<hw::SocketCan>(*can);
+  } else {
+    transport = std::make_unique<hw::RmpUsbCan>(
+        std::make_unique<hw::SerialPort>(*usb, hw::SerialOptions{baud}));
+  }
+  hw::RmpBase base(std::move(transport), options);
+  std::cerr << "base: " << base.name() << (sim ? " (simulated)" : "") << "\n";
+  if (estop) base.emergencyStop();
+  std::signal(SIGINT, onBaseInterrupt);
+
+  const auto start = hw::Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(hw::Clock::now() - start).count(); };
+  double lastPrint = -1;
+  while (elapsed() < duration && !gBaseInterrupted) {
+    base.command({linear, angular});
+    if (elapsed() - lastPrint >= 0.2) {
+      lastPrint = elapsed();
+      print(base.odometry(), base.health(), lastPrint, base.emergencyStopped(), json);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  // Stop: zero commands until the base reports standing still (at most 1 s), then shut down.
+  const auto stopBy = hw::Clock::now() + std::chrono::seconds(1);
+  while (hw::Clock::now() < stopBy) {
+    base.command({0, 0});
+    const auto o = base.odometry();
+    if (o && std::abs(o->velocity.linear) < 1e-3 && std::abs(o->velocity.angular) < 1e-3) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  base.shutdown();
+  const hw::BaseHealth h = base.health();
+  print(base.odometry(), h, elapsed(), base.emergencyStopped(), json);
+  std::cerr << "base: stopped; " << h.framesSent << " command frames, " << h.seriesReceived
+            << " status series, " << h.watchdogTrips << " watchdog trips, " << h.statusTimeouts
+            << " status timeouts, " << h.badFrames << " bad frames"
+            << (h.lastFault.empty() ? "" : "; last fault: " + h.lastFault) << "\n";
+  if (gBaseInterrupted) return 130;
+  if (!h.linkUp) throw Error("lost the link to the base: " + h.lastFault);
+  if (h.seriesReceived == 0)
+    throw Error("the base never reported its status (check the bus and the power)");
+  return 0;
+}
+
+}  // namespace horopter::cli

@@ -1,0 +1,201 @@
+// `horopter head`: drive a pan-tilt(-vergence) head (DYNAMIXEL or FLIR PTU),
+// or its simulator, and print the measured angles.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "commands.hpp"
+#include "horopter/error.hpp"
+#include "horopter/hardware/dynamixel_head.hpp"
+#include "horopter/hardware/ptu_head.hpp"
+#include "horopter/hardware/serial_port.hpp"
+#include "horopter/hardware/sim_devices.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+std::atomic<bool> gHeadInterrupted{false};
+extern "C" void onHeadInterrupt(int) {
+  gHeadInterrupted.store(true);
+}
+
+const char* kHeadHelp =
+    "Usage: horopter head (--port DEV | --sim) [--protocol dynamixel|ptu] [options]\n\n"
+    "Moves the stereo head to the given angles (radians; pan positive turns right, tilt\n"
+    "positive looks down, vergence = total angle between the optical axes) and prints the\n"
+    "measured angles until they arrive. Without --pan/--tilt/--vergence: prints the\n"
+    "measured angles once. Ctrl-C halts the head where it is.\n\n"
+    "  --port DEV          serial device, e.g. /dev/ttyUSB0\n"
+    "  --sim               a simulated device on a pseudo-terminal instead of --port\n"
+    "  --protocol P        dynamixel (Protocol 2.0, X series; default) or ptu (FLIR ASCII)\n"
+    "  --baud N            default 57600 (dynamixel) or 9600 (ptu)\n"
+    "  --ids P,T[,L,R]     DYNAMIXEL IDs of pan, tilt and left/right vergence (default 1,2)\n"
+    "  --pan R --tilt R --vergence R   target angles in radians (vergence: dynamixel with 4 IDs)\n"
+    "  --speed R           rad/s per axis (default 0.5, at most 1.0)\n"
+    "  --tolerance R       arrived when every axis is within R rad (default 0.003)\n"
+    "  --timeout S         give up after S seconds (default 10; exit code 1)\n"
+    "  --json              one JSON object per printed reading\n";
+
+std::vector<int> parseIds(const std::string& text) {
+  std::vector<int> ids;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const int id = std::stoi(item, &used);
+      if (used != item.size() || id < 0 || id > 252) throw std::invalid_argument(item);
+      ids.push_back(id);
+    } catch (const std::exception&) {
+      throw Error("--ids: '" + item + "' is not a DYNAMIXEL ID (0..252)");
+    }
+  }
+  if (ids.size() != 2 && ids.size() != 4)
+    throw Error("--ids takes 2 IDs (pan,tilt) or 4 (pan,tilt,left,right), got " +
+                std::to_string(ids.size()));
+  return ids;
+}
+
+void print(const hw::HeadMeasurement& m, double t, bool json) {
+  char line[200];
+  if (json)
+    std::snprintf(line, sizeof line,
+                  "{\"t\": %.2f, \"pan\": %.4f, \"tilt\": %.4f, \"vergence\": %.4f}", t,
+                  m.angles.pan, m.angles.tilt, m.angles.vergence);
+  else
+    std::snprintf(line, sizeof line, "t=%5.2fs  pan=%+.4f  tilt=%+.4f  vergence=%+.4f rad", t,
+                  m.angles.pan, m.angles.tilt, m.angles.vergence);
+  std::cout << line << std::endl;
+}
+
+}  // namespace
+
+int runHead(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << kHeadHelp;
+    return 0;
+  }
+  const bool sim = args.flag("--sim");
+  const auto port = args.value("--port");
+  const std::string protocol = args.stringValue("--protocol", "dynamixel");
+  if (protocol != "dynamixel" && protocol != "ptu")
+    throw Error("--protocol must be dynamixel or ptu, got '" + protocol + "'");
+  const int baud = args.intValue("--baud", protocol == "ptu" ? 9600 : 57600);
+  const std::vector<int> ids = parseIds(args.stringValue("--ids", "1,2"));
+  const auto pan = args.optionalDouble("--pan");
+  const auto tilt = args.optionalDouble("--tilt");
+  const auto vergence = args.optionalDouble("--vergence");
+  const double speed = args.doubleValue("--speed", 0.5);
+  const double tolerance = args.doubleValue("--tolerance", 0.003);
+  const double timeout = args.doubleValue("--timeout", 10);
+  const bool json = args.flag("--json");
+  args.finish("head");
+  if (sim == port.has_value()) throw Error("give exactly one of --port DEV or --sim");
+  if (!(speed > 0 && speed <= 1.0)) throw Error("--speed must be in (0, 1] rad/s");
+  if (!(tolerance > 0) || !(timeout > 0)) throw Error("--tolerance and --timeout must be > 0");
+  if (vergence && (protocol == "ptu" || ids.size() != 4))
+    throw Error("--vergence needs a DYNAMIXEL head with 4 IDs (--ids pan,tilt,left,right)");
+
+  std::unique_ptr<hw::SimDynamixelBus> simBus;
+  std::unique_ptr<hw::SimPtu> simPtu;
+  std::string device = port.value_or("");
+  if (sim && protocol == "dynamixel") {
+    std::vector<std::uint8_t> simIds;
+    for (int id : ids) simIds.push_back(static_cast<std::uint8_t>(id));
+    simBus = std::make_unique<hw::SimDynamixelBus>(simIds);
+    device = simBus->port();
+  } else if (sim) {
+    simPtu = std::make_unique<hw::SimPtu>();
+    device = simPtu->port();
+  }
+  auto serial = std::make_unique<hw::SerialPort>(device, hw::SerialOptions{baud});
+  std::unique_ptr<hw::Head> head;
+  std::function<hw::HeadHealth()> health;
+  if (protocol == "dynamixel") {
+    hw::DynamixelHeadOptions o;
+    o.panId = static_cast<std::uint8_t>(ids[0]);
+    o.tiltId = static_cast<std::uint8_t>(ids[1]);
+    if (ids.size() == 4) {
+      o.leftVergenceId = static_cast<std::uint8_t>(ids[2]);
+      o.rightVergenceId = static_cast<std::uint8_t>(ids[3]);
+      o.limits.vergenceMax = 0.5;
+    }
+    auto d = std::make_unique<hw::DynamixelHead>(std::move(serial), o);
+    health = [p = d.get()] { return p->health(); };
+    head = std::move(d);
+  } else {
+    auto d = std::make_unique<hw::PtuHead>(std::move(serial));
+    health = [p = d.get()] { return p->health(); };
+    head = std::move(d);
+  }
+  std::cerr << "head: " << head->name() << (sim ? " (simulated)" : "") << "\n";
+
+  const auto start = hw::Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(hw::Clock::now() - start).count(); };
+  // Wait for the first reading.
+  while (!head->measured() && elapsed() < timeout)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  auto m = head->measured();
+  if (!m)
+    throw Error("no angle reading from the head within " + std::to_string(timeout) +
+                " s: " + health().lastFault);
+  if (!pan && !tilt && !vergence) {
+    print(*m, elapsed(), json);
+    return 0;
+  }
+  hw::HeadAngles target = m->angles;
+  if (pan) target.pan = *pan;
+  if (tilt) target.tilt = *tilt;
+  if (vergence) target.vergence = *vergence;
+  const hw::HeadLimits l = head->limits();
+  const hw::HeadAngles clamped{
+      std::clamp(target.pan, l.panMin, l.panMax), std::clamp(target.tilt, l.tiltMin, l.tiltMax),
+      l.hasVergence ? std::clamp(target.vergence, l.vergenceMin, l.vergenceMax) : 0};
+  if (clamped.pan != target.pan || clamped.tilt != target.tilt ||
+      clamped.vergence != target.vergence)
+    std::cerr << "head: target clamped to the head's limits (pan " << l.panMin << ".." << l.panMax
+              << ", tilt " << l.tiltMin << ".." << l.tiltMax << ")\n";
+  head->command(clamped, speed);
+  std::signal(SIGINT, onHeadInterrupt);
+  double lastPrint = -1;
+  while (true) {
+    m = head->measured();
+    const bool arrived = std::abs(m->angles.pan - clamped.pan) <= tolerance &&
+                         std::abs(m->angles.tilt - clamped.tilt) <= tolerance &&
+                         std::abs(m->angles.vergence - clamped.vergence) <= tolerance;
+    const double t = elapsed();
+    if (arrived || t - lastPrint >= 0.1) {
+      print(*m, t, json);
+      lastPrint = t;
+    }
+    if (arrived) break;
+    if (gHeadInterrupted) {
+      head->halt();
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::cerr << "head: interrupted, halted\n";
+      return 130;
+    }
+    if (!health().linkUp) throw Error("lost the link to the head: " + health().lastFault);
+    if (t > timeout) {
+      head->halt();
+      throw Error("the head did not reach the target within " + std::to_string(timeout) +
+                  " s (last fault: " + (health().lastFault.empty() ? "none" : health().lastFault) +
+                  ")");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const hw::HeadHealth h = health();
+  std::cerr << "head: arrived; " << h.exchanges << " exchanges, " << h.timeouts << " timeouts, "
+            << h.corruptReplies << " corrupt replies\n";
+  return 0;
+}
+
+}  // namespace horopter::cli
