@@ -16,8 +16,12 @@
 #include "commands.hpp"
 #include "horopter/calibration.hpp"
 #include "horopter/capture.hpp"
+#include "horopter/detection.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
+#include "horopter/head_control.hpp"
+#include "horopter/tracking.hpp"
+#include "horopter/tracking_eval.hpp"
 #include "horopter/vision_stages.hpp"
 #include "run_annotation.hpp"
 
@@ -33,9 +37,11 @@ extern "C" void onInterrupt(int) {
 
 const char* kRunHelp =
     "Usage: horopter run [options]\n\n"
-    "Runs the frame pipeline (capture -> rectify -> disparity -> mask -> annotate) with\n"
-    "several frames in flight, and writes to the output folder: run.avi (annotated video:\n"
-    "left image with the zone's ROI, disparity colour map, the image inside the horopter),\n"
+    "Runs the frame pipeline (capture -> rectify -> disparity -> mask -> detection ->\n"
+    "tracking -> head control -> annotate) with several frames in flight, and writes to the\n"
+    "output folder: run.avi (annotated video: left image with the zone's ROI, faces, hand\n"
+    "candidates, the godfather's tracks and body triangle; disparity colour map; the image\n"
+    "inside the horopter; a panel with the godfather's state and the head command),\n"
     "still_*.png and summary.json. With no options: 300 frames of the built-in synthetic\n"
     "scene. Ctrl-C stops capture and finishes the frames in flight.\n\n"
     "Source:\n"
@@ -55,6 +61,13 @@ const char* kRunHelp =
     "                          (px) of the fixation point on the centre column (default: the\n"
     "                          middle of the search range)\n"
     "  --focal-px F            without --calib: focal length (default: image width)\n"
+    "Detection, tracking, head control:\n"
+    "  --detect SCOPE     region (inside the horopter, default), full (the whole image) or off\n"
+    "  --elect-s T        seconds inside the zone to become the godfather (default 2)\n"
+    "  --release-s T      seconds outside the zone to be released (default 1)\n"
+    "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
+    "  --no-head-control  synthetic scene: the head stays still (default: closed loop, a\n"
+    "                     command from frame N acts at frame N + 3)\n"
     "Scheduling:\n"
     "  --backend B        scalar, avx2, opencl..., auto (default auto)\n"
     "  --threads N        threads of the front end's pool (default: all cores)\n"
@@ -88,6 +101,10 @@ struct RunJob {
   std::optional<double> fixationDisparity, focalPx;
   std::string calib;
   double fixationDistance = 1.5;
+  std::string detect = "region";
+  ElectionOptions election;
+  std::string headFormula = "atan2";
+  bool headControl = true;
 };
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -131,6 +148,15 @@ RunJob parseRun(Args& args) {
   job.focalPx = args.optionalDouble("--focal-px");
   job.calib = args.stringValue("--calib", "");
   job.fixationDistance = args.doubleValue("--fixation", job.fixationDistance);
+  job.detect = args.stringValue("--detect", job.detect);
+  if (job.detect != "region" && job.detect != "full" && job.detect != "off")
+    throw Error("--detect takes region, full or off, got '" + job.detect + "'");
+  job.election.electS = args.doubleValue("--elect-s", job.election.electS);
+  job.election.releaseS = args.doubleValue("--release-s", job.election.releaseS);
+  job.headFormula = args.stringValue("--head-formula", job.headFormula);
+  if (job.headFormula != "atan2" && job.headFormula != "paper")
+    throw Error("--head-formula takes atan2 or paper, got '" + job.headFormula + "'");
+  job.headControl = !args.flag("--no-head-control");
   if (!(job.fixationDistance > 0 && std::isfinite(job.fixationDistance)))
     throw Error("--fixation must be a positive distance");
   for (const auto& v : {job.fixationDisparity, job.focalPx})
@@ -141,28 +167,6 @@ RunJob parseRun(Args& args) {
   if (camera && !job.liveGiven) job.live = true;
   job.capture.frames = job.frames;
   return job;
-}
-
-// Thresholds from the synthetic scene's truth: its rig and the head's
-// vergence when the frame was rendered.
-ThresholdFunction syntheticThresholds(const synth::SyntheticScene& scene) {
-  RectifiedGeometry g;
-  g.focalPx = scene.focalPx();
-  g.cx = scene.cx();
-  g.cy = scene.cy();
-  g.baseline = scene.baselineM();
-  return [g](const Frame& f, std::vector<std::int16_t>& out) {
-    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
-    if (!truth) throw Error("a synthetic frame without its truth");
-    if (!(truth->head.vergence > 1e-9)) {
-      // Fixation at infinity: the zone is everything in front (d > 0).
-      std::fill(out.begin(), out.end(), std::int16_t{1});
-      return;
-    }
-    const ViethMuellerCircle circle =
-        viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence));
-    horopterThresholds(g, circle, out);
-  };
 }
 
 // Thresholds for an uncalibrated rectified source: the fixation point is
@@ -307,15 +311,40 @@ int runPipeline(Args& args) {
     throw Error("--display needs a display (DISPLAY is not set): drop --display, or run under X");
 
   const Backend& backend = findBackend(job.backend);
-  std::unique_ptr<FrameSource> source = openSource(job.source, job.capture);
+  const bool detect = job.detect != "off" && job.until.empty();
+  // The synthetic scene closed loop: the view turns with the head commands.
+  const bool closedLoop =
+      detect && job.headControl && !job.live && job.calib.empty() && job.source == "synthetic";
+  std::unique_ptr<FrameSource> source;
+  ClosedLoopSyntheticSource* loop = nullptr;
+  if (closedLoop) {
+    auto s = std::make_unique<ClosedLoopSyntheticSource>(job.capture.scene, job.capture.frames);
+    loop = s.get();
+    source = std::move(s);
+  } else {
+    source = openSource(job.source, job.capture);
+  }
   ThresholdFunction thresholds;
   RectifyFunction rectify;
-  if (!job.calib.empty())
+  TrackerOptions tracker;
+  tracker.election = job.election;
+  tracker.captureTime = job.live;
+  if (!job.calib.empty()) {
     std::tie(rectify, thresholds) = calibrated(job);
-  else if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get()))
-    thresholds = syntheticThresholds(synthetic->scene());
-  else
+    tracker.rig = rectifiedGeometry(loadStereoCalibration(job.calib));
+  } else if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get())) {
+    thresholds = syntheticZoneThresholds(synthetic->scene());
+  } else if (loop) {
+    thresholds = syntheticZoneThresholds(loop->scene());
+  } else {
     thresholds = disparityThresholds(job);
+  }
+  const synth::SyntheticScene* scene = loop ? &loop->scene() : nullptr;
+  if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get())) scene = &synthetic->scene();
+  if (scene) {
+    tracker.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
+    tracker.framesPerSecond = scene->options().framesPerSecond;
+  }
 
   PipelineOptions options;
   options.mode = job.live ? PipelineMode::Live : PipelineMode::Offline;
@@ -332,6 +361,18 @@ int runPipeline(Args& args) {
   if (job.until != "rectify") {
     pipeline.add(makeDisparityStage(job.stereo, job.median, backend, job.threads));
     if (job.until != "disparity") pipeline.add(makeMaskStage(thresholds, job.stereo, backend));
+  }
+  if (detect) {
+    DetectorOptions detector;
+    detector.scope =
+        job.detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
+    pipeline.add(makeDetectionStage(detector));
+    pipeline.add(makeTrackingStage(tracker));
+    if (loop) {
+      HeadControlOptions head;
+      head.formula = job.headFormula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
+      pipeline.add(makeSyntheticHeadControlStage(head, *loop));
+    }
   }
   if (!job.json)
     std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name << ", "

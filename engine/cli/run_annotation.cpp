@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "horopter/detection.hpp"
 #include "horopter/opencv.hpp"
 #include "horopter/synthetic_scene.hpp"
+#include "horopter/tracking.hpp"
 #include "io/disparity_images.hpp"
 
 namespace horopter::cli {
@@ -25,6 +27,36 @@ void label(cv::Mat& image, const std::string& text, int line) {
               cv::LINE_AA);
 }
 
+// Faces (green boxes), hand candidates (cyan rings), the subject's tracks
+// (head H, the person's own left L and right R hands; filled when observed
+// this frame, hollow when coasting) and the body triangle with its incentre.
+void drawPeople(cv::Mat& image, const Frame& frame) {
+  if (frame.detections) {
+    for (const FaceDetection& f : frame.detections->faces)
+      cv::rectangle(image, f.box, f.insideZone ? cv::Scalar(0, 220, 0) : cv::Scalar(0, 120, 0), 2);
+    for (const HandDetection& h : frame.detections->hands)
+      cv::circle(image, h.centroid, 6, cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+  }
+  if (!frame.tracking) return;
+  const TrackingState& t = *frame.tracking;
+  const cv::Scalar colour =
+      t.election == ElectionState::Godfather ? cv::Scalar(255, 0, 255) : cv::Scalar(0, 165, 255);
+  if (t.triangle) {
+    const cv::Point2f v[3] = {t.triangle->head, t.triangle->leftHand, t.triangle->rightHand};
+    for (int i = 0; i < 3; ++i)
+      cv::line(image, v[i], v[(i + 1) % 3], colour, 1, cv::LINE_AA);
+    cv::circle(image, t.triangle->incentre, 4, colour, cv::FILLED, cv::LINE_AA);
+  }
+  const std::pair<const PartState*, const char*> parts[] = {
+      {&t.head, "H"}, {&t.leftHand, "L"}, {&t.rightHand, "R"}};
+  for (const auto& [part, name] : parts) {
+    if (!part->tracked) continue;
+    cv::circle(image, part->image, 9, colour, part->observed ? cv::FILLED : 2, cv::LINE_AA);
+    cv::putText(image, name, part->image + cv::Point2f(10, -10), cv::FONT_HERSHEY_SIMPLEX, 0.6,
+                colour, 2, cv::LINE_AA);
+  }
+}
+
 }  // namespace
 
 cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps) {
@@ -38,6 +70,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
     const cv::Rect roi = cv::boundingRect(frame.mask);
     if (roi.area() > 0) cv::rectangle(topLeft, roi, cv::Scalar(0, 255, 255), 2);
   }
+  drawPeople(topLeft, frame);
   label(topLeft, "left, zone ROI", 0);
 
   cv::Mat topRight = mosaic(cv::Rect(size.width, 0, size.width, size.height));
@@ -60,6 +93,32 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
     std::snprintf(text, sizeof text, "inside the zone: %.1f%% of pixels",
                   100.0 * cv::countNonZero(frame.mask) / static_cast<double>(frame.mask.total()));
     label(panel, text, line++);
+  }
+  if (frame.detections) {
+    std::snprintf(text, sizeof text, "detection (%s): %zu face(s), %zu hand candidate(s)",
+                  detectionScopeName(frame.detections->scope), frame.detections->faces.size(),
+                  frame.detections->hands.size());
+    label(panel, text, line++);
+  }
+  if (frame.tracking) {
+    const TrackingState& t = *frame.tracking;
+    if (t.election == ElectionState::Candidate)
+      std::snprintf(text, sizeof text, "godfather: candidate for %.1f s", t.candidateS);
+    else
+      std::snprintf(text, sizeof text, "godfather: %s",
+                    t.election == ElectionState::Godfather ? "elected" : "none");
+    label(panel, text, line++);
+    if (t.triangle) {
+      std::snprintf(text, sizeof text, "triangle: perimeter %.0f px, head angle %.0f deg",
+                    t.triangle->perimeter, t.triangle->headAngleRad * 57.2958);
+      label(panel, text, line++);
+    }
+    if (t.headCommand) {
+      std::snprintf(text, sizeof text, "head command: pan %.1f tilt %.1f deg (at frame %lld)",
+                    t.headCommand->pan * 57.2958, t.headCommand->tilt * 57.2958,
+                    static_cast<long long>(t.headCommandFrame));
+      label(panel, text, line++);
+    }
   }
   if (const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth)) {
     std::snprintf(text, sizeof text, "head pan %.1f tilt %.1f deg, fixation %.2f m",

@@ -99,7 +99,7 @@ Material noiseMaterial(cv::Vec3f gain, double texelsPerMetre) {
 
 }  // namespace
 
-std::vector<PersonParams> makePeople(std::uint64_t seed, bool distractor) {
+std::vector<PersonParams> makePeople(std::uint64_t seed, bool distractor, double stationZ) {
   std::vector<PersonParams> people;
   for (int id = 0; id < (distractor ? 2 : 1); ++id) {
     SplitMix64 rng(seed * 0x100000001B3ull + static_cast<std::uint64_t>(id) * 7919 + 1);
@@ -114,6 +114,7 @@ std::vector<PersonParams> makePeople(std::uint64_t seed, bool distractor) {
     if (id == 0) {
       p.start = {-0.9 + rng.uniform(-0.1, 0.1), room::kFloorY, 3.6};
       p.station = {rng.uniform(-0.12, 0.12), room::kFloorY, rng.uniform(1.2, 1.4)};
+      if (stationZ > 0) p.station.z = stationZ;
       p.walkS = 1.6;
       p.firstMovement = 0;
       p.face = TextureId::Face;

@@ -30,8 +30,9 @@ struct PersonParams {
   TextureId face = TextureId::Face;
 };
 
-// The two people of a scene with seed `seed` (the distractor only when asked).
-std::vector<PersonParams> makePeople(std::uint64_t seed, bool distractor);
+// The two people of a scene with seed `seed` (the distractor only when asked);
+// `stationZ` > 0 places the main person at that depth instead of 1.2-1.4 m.
+std::vector<PersonParams> makePeople(std::uint64_t seed, bool distractor, double stationZ = 0);
 
 // Joint positions at one instant, world coordinates.
 struct PersonPose {

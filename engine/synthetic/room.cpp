@@ -29,7 +29,7 @@ Primitive block(double x0, double x1, double z0, double z1, double height, const
 
 }  // namespace
 
-std::vector<Primitive> build(bool furnished) {
+std::vector<Primitive> build(bool furnished, bool skinClutter) {
   std::vector<Primitive> prims;
   Primitive walls;
   walls.shape = Primitive::Shape::Room;
@@ -61,6 +61,18 @@ std::vector<Primitive> build(bool furnished) {
       poster({1.0, -0.8, kBackZ - 0.02}, {1.9, -0.24, kBackZ}, TextureId::PosterB, 0.9));
   prims.push_back(poster({kLeftX, -0.7, 2.6}, {kLeftX + 0.02, 0.0, 3.6}, TextureId::PosterC, 1.0));
   prims.push_back(poster({-0.7, -1.2, 4.53}, {0.5, -0.45, 4.55}, TextureId::PosterD, 1.2));
+  if (skinClutter) {
+    // Skin-toned clutter where a hand may pass in front of it: panels on the
+    // back wall and the shelf at hand and head height, a rug under the
+    // people, a panel on the left wall.
+    const Material skin = tiled(TextureId::Noise, 250, {0.82f, 1.09f, 1.52f});
+    const Material paler = tiled(TextureId::Noise, 250, {0.95f, 1.15f, 1.45f});
+    prims.push_back(makeBox({-1.1, -0.5, kBackZ - 0.03}, {-0.2, 0.6, kBackZ}, skin));
+    prims.push_back(makeBox({0.3, -0.2, kBackZ - 0.03}, {1.0, 0.9, kBackZ}, paler));
+    prims.push_back(makeBox({-0.5, -0.1, 4.5}, {0.5, 0.5, 4.53}, skin));
+    prims.push_back(makeBox({-0.9, kFloorY - 0.01, 0.9}, {0.9, kFloorY, 2.4}, paler));
+    prims.push_back(makeBox({kLeftX, -0.3, 1.2}, {kLeftX + 0.02, 0.6, 2.4}, skin));
+  }
   return prims;
 }
 

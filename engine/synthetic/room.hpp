@@ -15,7 +15,8 @@ inline constexpr double kCeilingY = -1.5, kFloorY = 1.45;  // the rig is 1.45 m 
 inline constexpr double kBehindZ = -1.0, kBackZ = 5.0;
 
 // `furnished`: furniture boxes (skin-coloured wood among them) and posters;
-// without: only the six inner walls (for plane tests).
-std::vector<Primitive> build(bool furnished);
+// without: only the six inner walls (for plane tests). `skinClutter` adds
+// skin-coloured panels behind the person, a rug and a skin-toned poster.
+std::vector<Primitive> build(bool furnished, bool skinClutter = false);
 
 }  // namespace horopter::synth::room

@@ -38,6 +38,28 @@ void validate(const SceneOptions& o) {
         num(o.focalPx));
   if (!std::isfinite(o.framesPerSecond) || !(o.framesPerSecond > 0))
     throw Error("synthetic scene framesPerSecond must be positive, got " + num(o.framesPerSecond));
+  if (!std::isfinite(o.lightingGain) || !(o.lightingGain > 0) || o.lightingGain > 4)
+    throw Error("synthetic scene lightingGain must be in (0, 4], got " + num(o.lightingGain));
+  if (!std::isfinite(o.sensorNoiseSigma) || o.sensorNoiseSigma < 0 || o.sensorNoiseSigma > 64)
+    throw Error("synthetic scene sensorNoiseSigma must be in [0, 64] grey levels, got " +
+                num(o.sensorNoiseSigma));
+  if (!std::isfinite(o.personDistanceM) || o.personDistanceM < 0 ||
+      (o.personDistanceM > 0 && (o.personDistanceM < 0.6 || o.personDistanceM > 4)))
+    throw Error("synthetic scene personDistanceM must be 0 (by seed) or in [0.6, 4] m, got " +
+                num(o.personDistanceM));
+}
+
+// Lighting gain, then sensor noise drawn from (seed, frame, eye): the same
+// frame renders the same way whatever else was rendered before.
+void sensorEffects(const SceneOptions& o, int frameIndex, int eye, cv::Mat& image) {
+  if (o.lightingGain != 1) image.convertTo(image, -1, o.lightingGain);
+  if (o.sensorNoiseSigma > 0) {
+    cv::RNG rng(o.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(frameIndex) * 2 +
+                static_cast<std::uint64_t>(eye) + 1);
+    cv::Mat noise(image.size(), CV_16SC3);
+    rng.fill(noise, cv::RNG::NORMAL, 0, o.sensorNoiseSigma);
+    cv::add(image, noise, image, cv::noArray(), CV_8UC3);
+  }
 }
 
 void validate(const HeadPose& p) {
@@ -63,9 +85,10 @@ SceneRenderer::SceneRenderer(const SceneOptions& options)
                                  : 0.5 * options.width / std::tan(30 * kPi / 180)),
       cx_(0.5 * (options.width - 1)),
       cy_(0.5 * (options.height - 1)),
-      room_(room::build(options.content == SceneContent::Full)),
-      people_(options.content == SceneContent::Full ? makePeople(options.seed, options.distractor)
-                                                    : std::vector<PersonParams>{}) {}
+      room_(room::build(options.content == SceneContent::Full, options.skinClutter)),
+      people_(options.content == SceneContent::Full
+                  ? makePeople(options.seed, options.distractor, options.personDistanceM)
+                  : std::vector<PersonParams>{}) {}
 
 Camera SceneRenderer::camera(const HeadPose& head, int eye) const {
   Camera c;
@@ -155,6 +178,8 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   for (std::size_t i = 0; i < people_.size(); ++i)
     truth.people.push_back(
         personTruth(left, layers[0], options_.baselineM, zone, people_[i].id, poses[i]));
+  sensorEffects(options_, frameIndex, 0, frame.left);
+  sensorEffects(options_, frameIndex, 1, frame.right);
   return frame;
 }
 

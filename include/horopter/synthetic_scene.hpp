@@ -58,6 +58,12 @@ struct SceneOptions {
   // stops at 1.2-1.4 m, stands inside the zone.
   HeadPose initialHead{0.0, 0.0, 0.06};
   SceneContent content = SceneContent::Full;
+  // Variations for the tracking trials (horopter eval-tracking); the defaults
+  // leave the scene as it was.
+  double lightingGain = 1;      // multiplies every rendered colour, (0, 4]
+  double sensorNoiseSigma = 0;  // Gaussian noise per pixel and channel (grey levels), per view
+  double personDistanceM = 0;   // the main person's station depth, metres (0: 1.2-1.4 m by seed)
+  bool skinClutter = false;     // skin-coloured panels on the back wall, a rug and a poster
 };
 
 enum class Movement { None, Circle, Pointing, WaveLeft, WaveRight, SagittalWave, ByeBye };

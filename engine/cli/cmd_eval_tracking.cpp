@@ -1,0 +1,176 @@
+// `horopter eval-tracking`: tracker loss, detection false positives and
+// frames/s on synthetic trials, with detection inside the horopter's region
+// and over the full image.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "horopter/error.hpp"
+#include "horopter/tracking_eval.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+const char* kEvalTrackingHelp =
+    "Usage: horopter eval-tracking [--trials N] [--seed S] [--frames F] [--json] [options]\n\n"
+    "Runs the whole pipeline (synthetic capture, closed loop with the head -> rectify ->\n"
+    "disparity -> mask -> face and hand detection -> godfather election and tracking ->\n"
+    "head control) on N synthetic trials, each twice: detection inside the horopter's region\n"
+    "and over the full image. Trial i uses seed S + i: the main person's distance (1.0-1.7 m),\n"
+    "lighting gain (0.7-1.3) and sensor noise (0-6 grey levels) come from it; every trial\n"
+    "has skin-coloured clutter and a distractor outside the zone.\n\n"
+    "Prints for each scope:\n"
+    "  loss      tracker loss: frames with a godfather by the truth (the main person inside\n"
+    "            the zone for T s) where the head or a visible hand has no track, or one\n"
+    "            further than max(20 px, half the face width)\n"
+    "  head/left/right  the same per part (left, right: the person's own)\n"
+    "  FP        detections (faces and hand candidates) that are not the head or a hand of\n"
+    "            a person inside the zone, over all detections\n"
+    "  detect    detection stage, ms per frame; vision: every stage but capture, ms per frame\n"
+    "  fps       frames per second of the whole pipeline, rendering the scene included\n\n"
+    "Options:\n"
+    "  --trials N         number of trials (default 20)\n"
+    "  --seed S           first trial's seed (default 1000)\n"
+    "  --frames F         frames per trial (default 300, 10 s at 30 frames/s)\n"
+    "  --size WxH         image size (default 640x480)\n"
+    "  --scope S          region, full or both (default both)\n"
+    "  --threads N        threads of the disparity stage (default 1)\n"
+    "  --backend B        front end backend: scalar, avx2, opencl..., auto (default auto)\n"
+    "  --elect-s T        seconds inside the zone to become the godfather (default 2)\n"
+    "  --release-s T      seconds outside the zone to be released (default 1)\n"
+    "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
+    "  --no-head-control  the head stays still (open loop)\n"
+    "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
+    "                     below the full image's (for tests)\n"
+    "  --json             print the results as one JSON object\n"
+    "  -v, --verbose      one line per trial on stderr\n";
+
+void parseSize(const std::string& text, int& width, int& height) {
+  if (std::sscanf(text.c_str(), "%dx%d", &width, &height) != 2 || width < 64 || height < 64 ||
+      width > 4096 || height > 4096)
+    throw Error("--size must be WxH with both between 64 and 4096, got '" + text + "'");
+}
+
+std::string scoreJson(const ScopeScore& s) {
+  std::ostringstream o;
+  o << "{\"scope\":\"" << detectionScopeName(s.scope) << "\",\"trials\":" << s.trials
+    << ",\"frames\":" << s.frames << ",\"godfather_frames\":" << s.godfatherFrames
+    << ",\"lost_frames\":" << s.lostFrames << ",\"tracker_loss\":" << s.trackerLoss()
+    << ",\"head_loss\":" << (s.head.visible ? double(s.head.lost) / s.head.visible : 0)
+    << ",\"left_hand_loss\":"
+    << (s.leftHand.visible ? double(s.leftHand.lost) / s.leftHand.visible : 0)
+    << ",\"right_hand_loss\":"
+    << (s.rightHand.visible ? double(s.rightHand.lost) / s.rightHand.visible : 0)
+    << ",\"detections\":" << s.detections << ",\"false_detections\":" << s.falseDetections
+    << ",\"false_positive_rate\":" << s.falsePositiveRate() << ",\"detection_ms\":" << s.detectionMs
+    << ",\"tracking_ms\":" << s.trackingMs << ",\"vision_ms\":" << s.visionMs
+    << ",\"fps\":" << s.fps() << "}";
+  return o.str();
+}
+
+double pct(std::int64_t lost, std::int64_t of) {
+  return of > 0 ? 100.0 * static_cast<double>(lost) / static_cast<double>(of) : 0;
+}
+
+}  // namespace
+
+int runEvalTracking(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << kEvalTrackingHelp;
+    return 0;
+  }
+  TrialOptions base;
+  const int trials = args.intValue("--trials", 20);
+  const long long seed = std::stoll(args.stringValue("--seed", "1000"));
+  base.frames = args.intValue("--frames", 300);
+  if (auto size = args.value("--size")) parseSize(*size, base.width, base.height);
+  const std::string scope = args.stringValue("--scope", "both");
+  base.threads = args.intValue("--threads", 1);
+  base.backend = args.stringValue("--backend", "auto");
+  base.tracker.election.electS = args.doubleValue("--elect-s", base.tracker.election.electS);
+  base.tracker.election.releaseS = args.doubleValue("--release-s", base.tracker.election.releaseS);
+  const std::string formula = args.stringValue("--head-formula", "atan2");
+  base.headControl = !args.flag("--no-head-control");
+  const bool requireBetter = args.flag("--require-region-better");
+  const bool json = args.flag("--json");
+  const bool verbose = args.flag("--verbose") || args.flag("-v");
+  args.finish("eval-tracking");
+  if (trials < 1) throw Error("--trials must be >= 1");
+  if (seed < 0) throw Error("--seed must be >= 0");
+  if (base.frames < 1) throw Error("--frames must be >= 1");
+  if (base.threads < 1 || base.threads > 256) throw Error("--threads must be in 1..256");
+  if (scope != "region" && scope != "full" && scope != "both")
+    throw Error("--scope takes region, full or both, got '" + scope + "'");
+  if (formula != "atan2" && formula != "paper")
+    throw Error("--head-formula takes atan2 or paper, got '" + formula + "'");
+  if (requireBetter && scope != "both") throw Error("--require-region-better needs --scope both");
+  base.head.formula = formula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
+
+  std::vector<DetectionScope> scopes;
+  if (scope != "full") scopes.push_back(DetectionScope::HoropterRegion);
+  if (scope != "region") scopes.push_back(DetectionScope::FullImage);
+  std::vector<ScopeScore> scores(scopes.size());
+  const bool tty = isatty(STDERR_FILENO) && !json;
+  for (int i = 0; i < trials; ++i) {
+    TrialOptions o = base;
+    o.seed = static_cast<std::uint64_t>(seed) + static_cast<std::uint64_t>(i);
+    for (std::size_t k = 0; k < scopes.size(); ++k) {
+      if (tty)
+        std::fprintf(stderr, "\rtrial %d/%d (seed %llu), %s...        ", i + 1, trials,
+                     static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]));
+      const TrialResult r = runTrackingTrial(o, scopes[k]);
+      scores[k].add(r);
+      if (verbose)
+        std::fprintf(
+            stderr, "%sseed %llu %-15s loss %5.1f%% (%lld/%lld)  FP %5.1f%%  detect %.2f ms\n",
+            tty ? "\r" : "", static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]),
+            100 * r.trackerLoss(), static_cast<long long>(r.lostFrames),
+            static_cast<long long>(r.godfatherFrames), 100 * r.falsePositiveRate(),
+            r.stageMs("detection"));
+    }
+  }
+  if (tty) std::fprintf(stderr, "\r%60s\r", "");
+
+  const bool better = scores.size() == 2 && scores[0].trackerLoss() < scores[1].trackerLoss();
+  if (json) {
+    std::printf(
+        "{\"trials\":%d,\"seed\":%lld,\"frames\":%d,\"width\":%d,\"height\":%d,\"scopes\":[",
+        trials, seed, base.frames, base.width, base.height);
+    for (std::size_t k = 0; k < scores.size(); ++k)
+      std::printf("%s%s", k ? "," : "", scoreJson(scores[k]).c_str());
+    std::printf("]");
+    if (scores.size() == 2) std::printf(",\"region_better\":%s", better ? "true" : "false");
+    std::printf("}\n");
+  } else {
+    std::printf("%d trials (seeds %lld-%lld), %d frames each at %dx%d, head control %s\n", trials,
+                seed, seed + trials - 1, base.frames, base.width, base.height,
+                base.headControl ? formula.c_str() : "off");
+    std::printf("%-16s %9s %7s %6s %6s %6s %6s %6s %9s %9s %6s\n", "scope", "godfather", "loss%",
+                "head%", "left%", "right%", "FP%", "dets", "detect ms", "vision ms", "fps");
+    for (const ScopeScore& s : scores)
+      std::printf("%-16s %9lld %7.2f %6.2f %6.2f %6.2f %6.1f %6lld %9.2f %9.2f %6.1f\n",
+                  detectionScopeName(s.scope), static_cast<long long>(s.godfatherFrames),
+                  100 * s.trackerLoss(), pct(s.head.lost, s.head.visible),
+                  pct(s.leftHand.lost, s.leftHand.visible),
+                  pct(s.rightHand.lost, s.rightHand.visible), 100 * s.falsePositiveRate(),
+                  static_cast<long long>(s.detections), s.detectionMs, s.visionMs, s.fps());
+    if (scores.size() == 2)
+      std::printf("region vs full image: tracker loss %s, detection %.1fx faster\n",
+                  better ? "lower" : "NOT lower",
+                  scores[0].detectionMs > 0 ? scores[1].detectionMs / scores[0].detectionMs : 0.0);
+  }
+  if (requireBetter && !better) {
+    std::fprintf(stderr,
+                 "horopter eval-tracking: the region's tracker loss (%.2f%%) is not below the full "
+                 "image's (%.2f%%)\n",
+                 100 * scores[0].trackerLoss(), 100 * scores[1].trackerLoss());
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace horopter::cli

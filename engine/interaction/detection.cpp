@@ -1,0 +1,201 @@
+// Face and hand detection inside the zone or over the whole image; see
+// horopter/detection.hpp.
+#include "horopter/detection.hpp"
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/objdetect.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+const char* detectionScopeName(DetectionScope scope) {
+  return scope == DetectionScope::HoropterRegion ? "horopter-region" : "full-image";
+}
+
+struct Detector::Impl {
+  cv::CascadeClassifier cascade;
+  cv::Mat grey, skin, grown, labels, stats, centroids;
+  cv::Mat openKernel, closeKernel, maskCloseKernel, growKernel;
+};
+
+namespace {
+
+cv::Mat ellipse(int diameter) {
+  return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(diameter, diameter));
+}
+
+// The fraction of mask pixels in the central half of a face box.
+double zoneCover(const cv::Mat& mask, const cv::Rect& box) {
+  if (mask.empty()) return 0;
+  const cv::Rect centre =
+      cv::Rect(box.x + box.width / 4, box.y + box.height / 4, box.width / 2, box.height / 2) &
+      cv::Rect(0, 0, mask.cols, mask.rows);
+  if (centre.empty()) return 0;
+  return cv::countNonZero(mask(centre)) / static_cast<double>(centre.area());
+}
+
+}  // namespace
+
+Detector::Detector(DetectorOptions options)
+    : options_(std::move(options)), impl_(std::make_unique<Impl>()) {
+  const DetectorOptions& o = options_;
+  if (!(o.scaleFactor > 1.0 && o.scaleFactor < 2.0))
+    throw Error("face scale factor must be in (1, 2), e.g. 1.1");
+  if (o.minNeighbors < 0) throw Error("face minNeighbors must be >= 0");
+  if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
+  if (o.minFacePx != 0 && o.minFacePx < 20)
+    throw Error(
+        "the smallest face must be >= 20 px (the cascade's window), or 0 for a 16th of the width");
+  if (o.maskGrowPx < 0 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 || o.minHandAreaPx < 1)
+    throw Error("mask growth, opening and closing must be >= 0 px and the hand area >= 1 px");
+  if (!std::filesystem::exists(o.faceCascade))
+    throw Error(
+        "face cascade '" + o.faceCascade +
+        "' not found: install Debian's opencv-data (scripts/setup.sh) or pass another file");
+  if (!impl_->cascade.load(o.faceCascade))
+    throw Error("cannot load the face cascade '" + o.faceCascade + "'");
+  if (o.openPx > 0) impl_->openKernel = ellipse(o.openPx);
+  if (o.closePx > 0) impl_->closeKernel = ellipse(o.closePx);
+  if (o.maskGrowPx > 0) impl_->growKernel = ellipse(2 * o.maskGrowPx + 1);
+  if (o.maskClosePx > 0) impl_->maskCloseKernel = ellipse(o.maskClosePx);
+}
+
+Detector::~Detector() = default;
+Detector::Detector(Detector&&) noexcept = default;
+
+Detections Detector::detect(const Frame& frame) {
+  const DetectorOptions& o = options_;
+  Impl& m = *impl_;
+  if (frame.left.empty() || (frame.left.type() != CV_8UC3 && frame.left.type() != CV_8UC1))
+    throw Error("detection needs the left image in colour (BGR) or grey (faces only)");
+  cv::Mat colour = frame.left;
+  if (colour.channels() == 1) cv::cvtColor(frame.left, colour, cv::COLOR_GRAY2BGR);  // no skin
+  const cv::Rect image(0, 0, frame.left.cols, frame.left.rows);
+  const bool region = o.scope == DetectionScope::HoropterRegion;
+  if (!frame.mask.empty() && frame.mask.size() != frame.left.size())
+    throw Error("the zone mask and the left image differ in size");
+  if (region && frame.mask.empty())
+    throw Error("detection in the horopter region needs Frame::mask: run the mask stage first");
+
+  Detections d;
+  d.scope = o.scope;
+  // Where to look, and the grown mask over it.
+  cv::Rect roi = image;
+  if (region) {
+    roi = cv::boundingRect(frame.mask);
+    if (roi.empty()) return d;
+    const int g = o.maskGrowPx + o.maskClosePx;
+    roi = cv::Rect(roi.x - g, roi.y - g, roi.width + 2 * g, roi.height + 2 * g) & image;
+    m.grown = frame.mask(roi).clone();
+    if (!m.maskCloseKernel.empty())
+      cv::morphologyEx(m.grown, m.grown, cv::MORPH_CLOSE, m.maskCloseKernel);
+    if (!m.growKernel.empty()) cv::dilate(m.grown, m.grown, m.growKernel);
+  }
+  d.searched = roi;
+  d.searchedPixels = roi.area();
+
+  // Faces.
+  cv::cvtColor(colour(roi), m.grey, cv::COLOR_BGR2GRAY);
+  const int minFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, frame.left.cols / 16);
+  const double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
+  if (scale != 1) cv::resize(m.grey, m.grey, cv::Size(), scale, scale, cv::INTER_AREA);
+  std::vector<cv::Rect> boxes;
+  const int minSize = std::max(20, cvRound(minFace * scale));
+  m.cascade.detectMultiScale(m.grey, boxes, o.scaleFactor, o.minNeighbors, 0,
+                             cv::Size(minSize, minSize));
+  for (cv::Rect b : boxes) {
+    const double k = 1 / scale;
+    b = cv::Rect(cvRound(b.x * k) + roi.x, cvRound(b.y * k) + roi.y, cvRound(b.width * k),
+                 cvRound(b.height * k));
+    FaceDetection f;
+    f.box = b;
+    f.centre = cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height);
+    f.width = static_cast<float>(b.width);
+    f.insideZone = zoneCover(frame.mask, b) >= 0.3;
+    if (region && !f.insideZone) continue;  // the region holds the zone only
+    d.faces.push_back(f);
+  }
+  std::sort(d.faces.begin(), d.faces.end(), [](const FaceDetection& a, const FaceDetection& b) {
+    return std::tie(a.box.x, a.box.y, a.box.width) < std::tie(b.box.x, b.box.y, b.box.width);
+  });
+
+  // Hands: skin that is neither a face nor a neck.
+  o.skin.classify(colour, roi, m.skin);
+  if (region) cv::bitwise_and(m.skin, m.grown, m.skin);
+  for (const FaceDetection& f : d.faces) {
+    const int mx = static_cast<int>(o.faceMargin * f.box.width);
+    cv::Rect out(f.box.x - mx - roi.x, f.box.y - mx - roi.y, f.box.width + 2 * mx,
+                 f.box.height + mx + static_cast<int>(o.neckFraction * f.box.height) + mx);
+    out &= cv::Rect(0, 0, roi.width, roi.height);
+    if (!out.empty()) m.skin(out).setTo(0);
+  }
+  if (!m.openKernel.empty()) cv::morphologyEx(m.skin, m.skin, cv::MORPH_OPEN, m.openKernel);
+  if (!m.closeKernel.empty()) cv::morphologyEx(m.skin, m.skin, cv::MORPH_CLOSE, m.closeKernel);
+  const int n = cv::connectedComponentsWithStats(m.skin, m.labels, m.stats, m.centroids, 8, CV_32S);
+  for (int i = 1; i < n; ++i) {
+    const int area = m.stats.at<int>(i, cv::CC_STAT_AREA);
+    if (area < o.minHandAreaPx) continue;
+    HandDetection h;
+    h.areaPx = area;
+    h.box = cv::Rect(m.stats.at<int>(i, cv::CC_STAT_LEFT) + roi.x,
+                     m.stats.at<int>(i, cv::CC_STAT_TOP) + roi.y,
+                     m.stats.at<int>(i, cv::CC_STAT_WIDTH), m.stats.at<int>(i, cv::CC_STAT_HEIGHT));
+    h.centroid = cv::Point2f(static_cast<float>(m.centroids.at<double>(i, 0) + roi.x),
+                             static_cast<float>(m.centroids.at<double>(i, 1) + roi.y));
+    const cv::Point c(cvRound(h.centroid.x), cvRound(h.centroid.y));
+    if (region) {
+      const cv::Point local = c - roi.tl();
+      h.insideZone = local.x >= 0 && local.y >= 0 && local.x < m.grown.cols &&
+                     local.y < m.grown.rows && m.grown.at<std::uint8_t>(local) != 0;
+    } else {
+      h.insideZone =
+          !frame.mask.empty() && image.contains(c) && frame.mask.at<std::uint8_t>(c) != 0;
+    }
+    d.hands.push_back(h);
+  }
+  std::sort(d.hands.begin(), d.hands.end(), [](const HandDetection& a, const HandDetection& b) {
+    return std::tie(b.areaPx, a.centroid.x, a.centroid.y) <
+           std::tie(a.areaPx, b.centroid.x, b.centroid.y);
+  });
+
+  // The triangle of the largest in-zone face (any face over the full image).
+  const FaceDetection* best = nullptr;
+  for (const FaceDetection& f : d.faces)
+    if ((f.insideZone || !region) && (!best || f.width > best->width)) best = &f;
+  if (best) {
+    const HandDetection *left = nullptr, *right = nullptr;
+    auto dist = [&](const HandDetection& h) { return cv::norm(h.centroid - best->centre); };
+    for (const HandDetection& h : d.hands) {
+      const HandDetection*& side = h.centroid.x >= best->centre.x ? left : right;
+      if (!side || dist(h) < dist(*side)) side = &h;
+    }
+    if (left && right) d.triangle = bodyTriangle(best->centre, left->centroid, right->centroid);
+  }
+  return d;
+}
+
+namespace {
+
+class DetectionStage : public Stage {
+ public:
+  explicit DetectionStage(DetectorOptions options) : detector_(std::move(options)) {}
+  std::string name() const override { return "detection"; }
+  void process(Frame& frame) override {
+    frame.detections = std::make_shared<const Detections>(detector_.detect(frame));
+  }
+
+ private:
+  Detector detector_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> makeDetectionStage(DetectorOptions options) {
+  return std::make_unique<DetectionStage>(std::move(options));
+}
+
+}  // namespace horopter

@@ -1,0 +1,68 @@
+// The godfather election's state machine; see horopter/godfather.hpp.
+#include "horopter/godfather.hpp"
+
+#include <cmath>
+
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+const char* electionStateName(ElectionState state) {
+  switch (state) {
+    case ElectionState::None:
+      return "none";
+    case ElectionState::Candidate:
+      return "candidate";
+    case ElectionState::Godfather:
+      return "godfather";
+  }
+  return "unknown";
+}
+
+GodfatherElection::GodfatherElection(ElectionOptions options) : options_(options) {
+  if (!(options.electS >= 0) || !(options.releaseS >= 0) || !(options.candidateGraceS >= 0) ||
+      !std::isfinite(options.electS) || !std::isfinite(options.releaseS))
+    throw Error("godfather election times must be finite and >= 0 seconds");
+}
+
+void GodfatherElection::reset() {
+  state_ = ElectionState::None;
+  since_ = lastInside_ = 0;
+}
+
+double GodfatherElection::candidateS(double timeS) const {
+  return state_ == ElectionState::None ? 0 : timeS - since_;
+}
+
+ElectionState GodfatherElection::update(double timeS, std::optional<bool> seenInside) {
+  const bool inside = seenInside.value_or(false);
+  switch (state_) {
+    case ElectionState::None:
+      if (inside) {
+        state_ = ElectionState::Candidate;
+        since_ = lastInside_ = timeS;
+      }
+      break;
+    case ElectionState::Candidate:
+      if (inside) {
+        lastInside_ = timeS;
+      } else if (timeS - lastInside_ > options_.candidateGraceS) {
+        reset();
+        break;
+      }
+      if (timeS - since_ >= options_.electS) state_ = ElectionState::Godfather;
+      break;
+    case ElectionState::Godfather:
+      if (inside)
+        lastInside_ = timeS;
+      else if (timeS - lastInside_ >= options_.releaseS)
+        reset();
+      break;
+  }
+  // An election with T = 0 elects on the first sighting.
+  if (state_ == ElectionState::Candidate && timeS - since_ >= options_.electS)
+    state_ = ElectionState::Godfather;
+  return state_;
+}
+
+}  // namespace horopter

@@ -1,0 +1,224 @@
+// Pan/tilt formulas, the limited command and the head-control stage; see
+// horopter/head_control.hpp.
+#include "horopter/head_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "horopter/error.hpp"
+#include "horopter/tracking.hpp"
+
+namespace horopter {
+
+hw::HeadAngles anglesToCentre(const cv::Point3f& p, const hw::HeadAngles& pose) {
+  // The head's base frame: world = Ry(pan) Rx(tilt) rig (synthetic_scene.hpp).
+  const double ct = std::cos(pose.tilt), st = std::sin(pose.tilt);
+  const double cp = std::cos(pose.pan), sp = std::sin(pose.pan);
+  const double y1 = ct * p.y + st * p.z, z1 = -st * p.y + ct * p.z;  // Rx(tilt)
+  const double xw = cp * p.x + sp * z1, zw = -sp * p.x + cp * z1;    // Ry(pan)
+  hw::HeadAngles a = pose;
+  a.pan = std::atan2(xw, zw);
+  a.tilt = std::atan2(y1, std::hypot(xw, zw));
+  return a;
+}
+
+double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda) {
+  const double phi = distanceM * lambda;
+  if (!(focalPx > 0) || !(phi > 0) || !std::isfinite(phi))
+    throw Error("the paper's head formula needs a positive focal length, distance and lambda");
+  return std::atan(offsetPx / (phi * focalPx));
+}
+
+hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& target,
+                            const HeadControlOptions& o) {
+  const double step = o.maxRateRadPerS / o.framesPerSecond;
+  auto axis = [&](double from, double to, double lo, double hi) {
+    const double error = to - from;
+    if (std::abs(error) < o.deadbandRad) return std::clamp(from, lo, hi);
+    return std::clamp(from + std::clamp(o.gain * error, -step, step), lo, hi);
+  };
+  hw::HeadAngles c = pose;
+  c.pan = axis(pose.pan, target.pan, o.limits.panMin, o.limits.panMax);
+  c.tilt = axis(pose.tilt, target.tilt, o.limits.tiltMin, o.limits.tiltMax);
+  return c;
+}
+
+// ---- the synthetic rig ------------------------------------------------------
+
+SyntheticRigHead::SyntheticRigHead(hw::HeadAngles initial, hw::HeadLimits limits, int delay)
+    : limits_(limits), delay_(delay), pose_(initial) {
+  if (delay < 1)
+    throw Error("the actuation delay must be >= 1 frame, got " + std::to_string(delay));
+  if (!(limits.panMin <= limits.panMax) || !(limits.tiltMin <= limits.tiltMax))
+    throw Error("head limits need min <= max");
+}
+
+hw::HeadAngles SyntheticRigHead::clamp(const hw::HeadAngles& a) const {
+  hw::HeadAngles c = a;
+  c.pan = std::clamp(a.pan, limits_.panMin, limits_.panMax);
+  c.tilt = std::clamp(a.tilt, limits_.tiltMin, limits_.tiltMax);
+  c.vergence = pose_.vergence;  // the rig keeps its vergence
+  return c;
+}
+
+void SyntheticRigHead::command(const hw::HeadAngles& target, double) {
+  std::lock_guard lock(mutex_);
+  liveTarget_ = clamp(target);
+}
+
+std::optional<hw::HeadMeasurement> SyntheticRigHead::measured() const {
+  std::lock_guard lock(mutex_);
+  return hw::HeadMeasurement{hw::Clock::now(), pose_};
+}
+
+void SyntheticRigHead::halt() {
+  std::lock_guard lock(mutex_);
+  liveTarget_.reset();
+  pending_.clear();
+}
+
+void SyntheticRigHead::post(std::int64_t frame, const std::optional<hw::HeadAngles>& target) {
+  {
+    std::lock_guard lock(mutex_);
+    if (frame <= postedThrough_)
+      throw Error("head commands must be posted once per frame, in order: got frame " +
+                  std::to_string(frame) + " after " + std::to_string(postedThrough_));
+    postedThrough_ = frame;
+    if (target) pending_.emplace_back(frame, clamp(*target));
+  }
+  posted_.notify_all();
+}
+
+hw::HeadAngles SyntheticRigHead::poseForFrame(std::int64_t frame,
+                                              std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  const std::int64_t due = frame - delay_;
+  if (!posted_.wait_for(lock, timeout, [&] { return postedThrough_ >= due; }))
+    throw Error("the synthetic rig waited " + std::to_string(timeout.count()) +
+                " ms for the head command of frame " + std::to_string(due) +
+                " (is the head-control stage in the pipeline?)");
+  while (!pending_.empty() && pending_.front().first <= due) {
+    pose_ = pending_.front().second;
+    pending_.pop_front();
+  }
+  if (liveTarget_) {
+    pose_ = *liveTarget_;
+    liveTarget_.reset();
+  }
+  return pose_;
+}
+
+ClosedLoopSyntheticSource::ClosedLoopSyntheticSource(const synth::SceneOptions& options, int frames,
+                                                     int actuationDelayFrames,
+                                                     hw::HeadLimits limits)
+    : scene_(options), frames_(frames) {
+  if (frames < 1)
+    throw Error("the synthetic scene needs at least 1 frame, got " + std::to_string(frames));
+  const synth::HeadPose p = options.initialHead;
+  head_ = std::make_shared<SyntheticRigHead>(hw::HeadAngles{p.pan, p.tilt, p.vergence}, limits,
+                                             actuationDelayFrames);
+}
+
+bool ClosedLoopSyntheticSource::next(Frame& frame) {
+  if (next_ >= frames_) return false;
+  const hw::HeadAngles a = head_->poseForFrame(next_);
+  scene_.commandHead({a.pan, a.tilt, a.vergence});
+  synth::SyntheticFrame rendered = scene_.render(next_++);
+  frame.left = std::move(rendered.left);
+  frame.right = std::move(rendered.right);
+  frame.truth = std::move(rendered.truth);
+  return true;
+}
+
+// ---- the stage --------------------------------------------------------------
+
+namespace {
+
+class HeadControlStage : public Stage {
+ public:
+  HeadControlStage(HeadControlOptions o, CapturePose pose, HeadCommandSink sink)
+      : o_(o), pose_(std::move(pose)), sink_(std::move(sink)) {
+    if (!(o.gain > 0 && o.gain <= 1)) throw Error("head control gain must be in (0, 1]");
+    if (!(o.maxRateRadPerS > 0) || !(o.framesPerSecond > 0) || o.deadbandRad < 0)
+      throw Error("head control rate and frame rate must be positive, the dead band >= 0");
+    if (o.actuationDelayFrames < 1) throw Error("the actuation delay must be >= 1 frame");
+    if (o.formula == PanTiltFormula::Paper && !(o.lambda > 0))
+      throw Error("the paper's head formula needs lambda > 0");
+  }
+  std::string name() const override { return "head control"; }
+  void process(Frame& frame) override {
+    std::optional<hw::HeadAngles> command;
+    try {
+      command = compute(frame);
+    } catch (...) {
+      sink_(frame.index, std::nullopt);  // capture must not wait for this frame
+      throw;
+    }
+    sink_(frame.index, command);
+    if (command && frame.tracking) {
+      auto state = std::make_shared<TrackingState>(*frame.tracking);
+      state->headCommand = command;
+      state->headCommandFrame = frame.index + o_.actuationDelayFrames;
+      frame.tracking = state;
+    }
+  }
+
+ private:
+  std::optional<hw::HeadAngles> compute(const Frame& frame) const {
+    if (!frame.tracking)
+      throw Error("head control needs Frame::tracking: run the tracking stage first");
+    const TrackingState& s = *frame.tracking;
+    if (s.election != ElectionState::Godfather || !s.head.observed) return std::nullopt;
+    const std::optional<hw::HeadAngles> pose = pose_(frame);
+    if (!pose) return std::nullopt;
+    hw::HeadAngles target = *pose;
+    const bool have3d = std::isfinite(s.head.rig.z) && s.head.rig.z > 0;
+    if (o_.formula == PanTiltFormula::Atan2 && have3d) {
+      target = anglesToCentre(s.head.rig, *pose);
+    } else if (o_.focalPx > 0) {
+      // The paper's formula (or, without depth, the pinhole angle: phi = 1).
+      const bool paper = o_.formula == PanTiltFormula::Paper && have3d;
+      const double d = paper ? s.head.rig.z : 1.0, lambda = paper ? o_.lambda : 1.0;
+      target.pan += paperAngle(s.head.image.x - o_.cx, o_.focalPx, d, lambda);
+      target.tilt += paperAngle(s.head.image.y - o_.cy, o_.focalPx, d, lambda);
+    } else {
+      return std::nullopt;
+    }
+    const hw::HeadAngles c = limitCommand(*pose, target, o_);
+    if (c.pan == pose->pan && c.tilt == pose->tilt) return std::nullopt;  // inside the dead band
+    return c;
+  }
+
+  HeadControlOptions o_;
+  CapturePose pose_;
+  HeadCommandSink sink_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options, CapturePose pose,
+                                            HeadCommandSink sink) {
+  return std::make_unique<HeadControlStage>(options, std::move(pose), std::move(sink));
+}
+
+std::unique_ptr<Stage> makeSyntheticHeadControlStage(HeadControlOptions options,
+                                                     ClosedLoopSyntheticSource& source) {
+  if (options.actuationDelayFrames != source.head()->actuationDelayFrames())
+    throw Error("the head control's actuation delay differs from the synthetic rig's");
+  options.focalPx = source.scene().focalPx();
+  options.cx = source.scene().cx();
+  options.cy = source.scene().cy();
+  options.framesPerSecond = source.scene().options().framesPerSecond;
+  std::shared_ptr<SyntheticRigHead> head = source.head();
+  CapturePose pose = [](const Frame& f) -> std::optional<hw::HeadAngles> {
+    const auto* t = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!t) return std::nullopt;
+    return hw::HeadAngles{t->head.pan, t->head.tilt, t->head.vergence};
+  };
+  HeadCommandSink sink = [head](std::int64_t frame, const std::optional<hw::HeadAngles>& c) {
+    head->post(frame, c);
+  };
+  return makeHeadControlStage(options, pose, sink);
+}
+
+}  // namespace horopter

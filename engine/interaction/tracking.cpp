@@ -1,0 +1,225 @@
+// The godfather's election and Kalman tracks of head and hands; see
+// horopter/tracking.hpp.
+#include "horopter/tracking.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "horopter/error.hpp"
+
+namespace horopter {
+
+cv::Point3f rigPointFromDisparity(const cv::Mat& disparity, const RectifiedGeometry& rig,
+                                  cv::Point2f pixel, cv::Rect window) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  if (disparity.empty() || disparity.type() != CV_16SC1 || !(rig.focalPx > 0) ||
+      !(rig.baseline > 0))
+    return {nan, nan, nan};
+  window &= cv::Rect(0, 0, disparity.cols, disparity.rows);
+  std::vector<std::int16_t> valid;
+  valid.reserve(static_cast<std::size_t>(std::max(0, window.area())));
+  for (int y = window.y; y < window.y + window.height; ++y) {
+    const auto* row = disparity.ptr<std::int16_t>(y);
+    for (int x = window.x; x < window.x + window.width; ++x)
+      if (row[x] > 0) valid.push_back(row[x]);
+  }
+  if (valid.empty()) return {nan, nan, nan};
+  auto middle = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2);
+  std::nth_element(valid.begin(), middle, valid.end());
+  const double d = *middle / 16.0;
+  const double z = rig.focalPx * rig.baseline / d;
+  // The rig's origin is midway between the cameras; the left one is at -B/2.
+  return {static_cast<float>((pixel.x - rig.cx) * z / rig.focalPx - 0.5 * rig.baseline),
+          static_cast<float>((pixel.y - rig.cy) * z / rig.focalPx), static_cast<float>(z)};
+}
+
+struct BodyTracker::Impl {
+  explicit Impl(const TrackerOptions& o) : election(o.election) {}
+  GodfatherElection election;
+  std::optional<ConstantVelocityTrack> head, hands[2];  // hands: [0] left, [1] right (the person's)
+  float faceWidth = 0;
+  bool haveStart = false;
+  SteadyClock::time_point start{};
+};
+
+namespace {
+
+void validate(const TrackerOptions& o) {
+  if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > 0))
+    throw Error("tracker coast time must be >= 0 s, reach and hand area > 0");
+  if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
+    throw Error("tracker framesPerSecond must be positive");
+}
+
+PartState partOf(const std::optional<ConstantVelocityTrack>& track, double timeS,
+                 const Frame& frame, const RectifiedGeometry& rig, int windowPx) {
+  PartState p;
+  if (!track) return p;
+  p.tracked = true;
+  p.observed = track->lastUpdateS() == timeS;
+  p.image = track->position();
+  const int h = std::max(1, windowPx / 2);
+  p.rig = rigPointFromDisparity(
+      frame.disparity, rig, p.image,
+      cv::Rect(cvRound(p.image.x) - h, cvRound(p.image.y) - h, 2 * h + 1, 2 * h + 1));
+  return p;
+}
+
+}  // namespace
+
+BodyTracker::BodyTracker(TrackerOptions options) : options_(options) {
+  validate(options_);
+  impl_ = std::make_unique<Impl>(options_);
+}
+BodyTracker::~BodyTracker() = default;
+BodyTracker::BodyTracker(BodyTracker&&) noexcept = default;
+
+TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
+  if (!frame.detections)
+    throw Error("tracking needs Frame::detections: run the detection stage first");
+  const Detections& det = *frame.detections;
+  Impl& m = *impl_;
+  const TrackerOptions& o = options_;
+  double t = static_cast<double>(frame.index) / o.framesPerSecond;
+  if (o.captureTime) {
+    if (!m.haveStart) {
+      m.start = frame.captured;
+      m.haveStart = true;
+    }
+    t = std::chrono::duration<double>(frame.captured - m.start).count();
+  }
+  for (auto* track : {&m.head, &m.hands[0], &m.hands[1]})
+    if (*track) (*track)->predict(t);
+
+  // The subject's face: the gated detection nearest the head track, or a new
+  // subject (the largest face inside the zone) when there is no track.
+  std::optional<bool> seenInside;
+  if (m.head) {
+    const FaceDetection* best = nullptr;
+    double bestD = 0;
+    for (const FaceDetection& f : det.faces) {
+      if (!m.head->inGate(f.centre)) continue;
+      const double d = m.head->distance2(f.centre);
+      if (!best || d < bestD) best = &f, bestD = d;
+    }
+    if (best) {
+      m.head->update(best->centre);
+      m.faceWidth = best->width;
+      seenInside = best->insideZone;
+    }
+  } else {
+    const FaceDetection* best = nullptr;
+    for (const FaceDetection& f : det.faces)
+      if (f.insideZone && (!best || f.width > best->width)) best = &f;
+    if (best) {
+      m.head.emplace(best->centre, t, o.head);
+      m.faceWidth = best->width;
+      seenInside = true;
+    }
+  }
+  const ElectionState state = m.election.update(t, seenInside);
+  if (m.head && t - m.head->lastUpdateS() > o.coastS) m.head.reset();
+  if (state == ElectionState::None || !m.head) {
+    m.head.reset();
+    m.hands[0].reset();
+    m.hands[1].reset();
+  }
+
+  // Hands: gated nearest-first assignment to the existing tracks, then new
+  // tracks from the candidates nearest each hand's resting place.
+  if (m.head) {
+    const cv::Point2f h = m.head->position();
+    const double fw = std::max(1.0f, m.faceWidth);
+    std::vector<const HandDetection*> candidates;
+    for (const HandDetection& c : det.hands)
+      if (cv::norm(c.centroid - h) <= o.reachFaceWidths * fw &&
+          c.areaPx <= o.maxHandAreaFaces * fw * fw)
+        candidates.push_back(&c);
+    std::vector<bool> taken(candidates.size(), false);
+    struct Pair {
+      double d2;
+      int track;
+      std::size_t candidate;
+    };
+    std::vector<Pair> pairs;
+    for (int k = 0; k < 2; ++k)
+      if (m.hands[k])
+        for (std::size_t j = 0; j < candidates.size(); ++j)
+          if (m.hands[k]->inGate(candidates[j]->centroid))
+            pairs.push_back({m.hands[k]->distance2(candidates[j]->centroid), k, j});
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      return std::tie(a.d2, a.track, a.candidate) < std::tie(b.d2, b.track, b.candidate);
+    });
+    bool updated[2] = {false, false};
+    for (const Pair& p : pairs) {
+      if (updated[p.track] || taken[p.candidate]) continue;
+      m.hands[p.track]->update(candidates[p.candidate]->centroid);
+      updated[p.track] = taken[p.candidate] = true;
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (m.hands[k] && !updated[k] && t - m.hands[k]->lastUpdateS() > o.coastS) m.hands[k].reset();
+      if (m.hands[k]) continue;
+      // The person's left hand appears on the image's right.
+      const double side = k == 0 ? 1.0 : -1.0;
+      const cv::Point2f rest(static_cast<float>(h.x + side * 1.4 * fw),
+                             static_cast<float>(h.y + 4.3 * fw));
+      std::size_t best = candidates.size();
+      double bestD = 0;
+      for (std::size_t j = 0; j < candidates.size(); ++j) {
+        if (taken[j] || (candidates[j]->centroid.x - h.x) * side < 0) continue;
+        const double d = cv::norm(candidates[j]->centroid - rest);
+        if (best == candidates.size() || d < bestD) best = j, bestD = d;
+      }
+      if (best < candidates.size()) {
+        m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
+        taken[best] = true;
+      }
+    }
+  }
+
+  TrackingState s;
+  s.timeS = t;
+  s.election = state;
+  s.candidateS = m.election.candidateS(t);
+  s.faceWidthPx = m.head ? m.faceWidth : 0;
+  body = BodySample{};
+  body.frame = frame.index;
+  body.timeS = t;
+  body.godfather = state == ElectionState::Godfather && m.head.has_value();
+  const int faceWindow = std::max(3, static_cast<int>(0.5f * m.faceWidth));
+  s.head = partOf(m.head, t, frame, o.rig, faceWindow);
+  s.leftHand = partOf(m.hands[0], t, frame, o.rig, std::max(3, faceWindow / 2));
+  s.rightHand = partOf(m.hands[1], t, frame, o.rig, std::max(3, faceWindow / 2));
+  if (body.godfather) {
+    body.head = s.head;
+    body.leftHand = s.leftHand;
+    body.rightHand = s.rightHand;
+  }
+  if (s.head.tracked && s.leftHand.tracked && s.rightHand.tracked)
+    s.triangle = bodyTriangle(s.head.image, s.leftHand.image, s.rightHand.image);
+  return s;
+}
+
+namespace {
+
+class TrackingStage : public Stage {
+ public:
+  explicit TrackingStage(TrackerOptions options) : tracker_(options) {}
+  std::string name() const override { return "tracking"; }
+  void process(Frame& frame) override {
+    frame.tracking = std::make_shared<const TrackingState>(tracker_.update(frame, frame.body));
+  }
+
+ private:
+  BodyTracker tracker_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> makeTrackingStage(TrackerOptions options) {
+  return std::make_unique<TrackingStage>(options);
+}
+
+}  // namespace horopter

@@ -1,0 +1,241 @@
+// Tracking trials on the synthetic scene and their scores; see
+// horopter/tracking_eval.hpp.
+#include "horopter/tracking_eval.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "horopter/backend.hpp"
+#include "horopter/error.hpp"
+#include "horopter/geometry.hpp"
+#include "synthetic/rng.hpp"
+
+namespace horopter {
+
+ThresholdFunction syntheticZoneThresholds(const synth::SyntheticScene& scene) {
+  RectifiedGeometry g;
+  g.focalPx = scene.focalPx();
+  g.cx = scene.cx();
+  g.cy = scene.cy();
+  g.baseline = scene.baselineM();
+  return [g](const Frame& f, std::vector<std::int16_t>& out) {
+    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!truth) throw Error("a synthetic frame without its truth");
+    if (!(truth->head.vergence > 1e-9)) {
+      std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front
+      return;
+    }
+    const ViethMuellerCircle circle =
+        viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence));
+    horopterThresholds(g, circle, out);
+  };
+}
+
+synth::SceneOptions trialScene(const TrialOptions& o) {
+  synth::SceneOptions s;
+  s.width = o.width;
+  s.height = o.height;
+  s.seed = o.seed;
+  synth::SplitMix64 rng(o.seed * 0xD1B54A32D192ED03ull + 17);
+  s.personDistanceM = rng.uniform(1.0, 1.7);
+  s.lightingGain = rng.uniform(0.7, 1.3);
+  s.sensorNoiseSigma = rng.uniform(0.0, 6.0);
+  s.skinClutter = true;
+  s.distractor = true;
+  return s;
+}
+
+double TrialResult::trackerLoss() const {
+  return godfatherFrames > 0 ? static_cast<double>(lostFrames) / godfatherFrames : 0;
+}
+double TrialResult::falsePositiveRate() const {
+  return detections > 0 ? static_cast<double>(falseDetections) / detections : 0;
+}
+double TrialResult::stageMs(const std::string& name) const {
+  for (const StageSummary& s : summary.stages)
+    if (s.name == name) return s.meanMs;
+  return 0;
+}
+
+double ScopeScore::trackerLoss() const {
+  return godfatherFrames > 0 ? static_cast<double>(lostFrames) / godfatherFrames : 0;
+}
+double ScopeScore::falsePositiveRate() const {
+  return detections > 0 ? static_cast<double>(falseDetections) / detections : 0;
+}
+double ScopeScore::fps() const {
+  return seconds > 0 ? frames / seconds : 0;
+}
+
+void ScopeScore::add(const TrialResult& t) {
+  scope = t.scope;
+  const double before = static_cast<double>(frames), n = static_cast<double>(t.summary.completed);
+  auto mean = [&](double sum, double value) {
+    return (sum * before + value * n) / std::max(1.0, before + n);
+  };
+  double vision = 0;
+  for (const StageSummary& s : t.summary.stages)
+    if (s.name.rfind("capture", 0) != 0) vision += s.meanMs;
+  detectionMs = mean(detectionMs, t.stageMs("detection"));
+  trackingMs = mean(trackingMs, t.stageMs("tracking"));
+  visionMs = mean(visionMs, vision);
+  ++trials;
+  frames += t.summary.completed;
+  godfatherFrames += t.godfatherFrames;
+  lostFrames += t.lostFrames;
+  for (auto [sum, part] : {std::pair{&head, &t.head}, std::pair{&leftHand, &t.leftHand},
+                           std::pair{&rightHand, &t.rightHand}}) {
+    sum->visible += part->visible;
+    sum->lost += part->lost;
+  }
+  detections += t.detections;
+  falseDetections += t.falseDetections;
+  seconds += t.summary.seconds;
+}
+
+namespace {
+
+// A hand is visible when it projects inside the image and nothing nearer
+// hides its centre (the truth's surface there is not in front of the hand's
+// front by more than a few centimetres).
+bool handVisible(const synth::FrameTruth& truth, cv::Point2f p2, const cv::Point3f& p3,
+                 double focalPx, double baselineM) {
+  const int x = cvRound(p2.x), y = cvRound(p2.y);
+  if (!(p3.z > 0) || x < 0 || y < 0 || x >= truth.disparity.cols || y >= truth.disparity.rows)
+    return false;
+  const double d = truth.disparity.at<std::int16_t>(y, x) / 16.0;
+  if (!(d > 0)) return false;
+  return focalPx * baselineM / d > p3.z - 0.1;
+}
+
+bool near(cv::Point2f a, cv::Point2f b, double tolerance) {
+  return std::hypot(double(a.x - b.x), double(a.y - b.y)) <= tolerance;
+}
+
+double tolerancePx(const synth::PersonTruth& p) {
+  return std::max(20.0, 0.5 * p.faceWidthPx);
+}
+
+// Scores one finished frame into `r`; returns whether it is a loss frame.
+class Scorer {
+ public:
+  Scorer(const TrialOptions& o, double focalPx, double baselineM, TrialResult& r)
+      : election_(o.tracker.election), focal_(focalPx), baseline_(baselineM), r_(r) {}
+
+  bool score(const Frame& f, const synth::FrameTruth& truth, bool& truthGodfather) {
+    ++r_.frames;
+    countDetections(f, truth);
+    const synth::PersonTruth& main = truth.people.at(0);
+    std::optional<bool> seen;
+    if (main.visible) seen = main.insideZone;
+    truthGodfather = election_.update(truth.timeS, seen) == ElectionState::Godfather;
+    if (!truthGodfather) return false;
+    ++r_.godfatherFrames;
+    const double tol = tolerancePx(main);
+    const BodySample& b = f.body;
+    bool lost = false;
+    auto part = [&](bool visible, const PartState& track, cv::Point2f at, PartScore& score) {
+      if (!visible) return;
+      ++score.visible;
+      if (!b.godfather || !track.tracked || !near(track.image, at, tol)) {
+        ++score.lost;
+        lost = true;
+      }
+    };
+    part(main.visible, b.head, main.head2d, r_.head);
+    part(handVisible(truth, main.leftHand2d, main.leftHand3d, focal_, baseline_), b.leftHand,
+         main.leftHand2d, r_.leftHand);
+    part(handVisible(truth, main.rightHand2d, main.rightHand3d, focal_, baseline_), b.rightHand,
+         main.rightHand2d, r_.rightHand);
+    if (lost) ++r_.lostFrames;
+    return lost;
+  }
+
+ private:
+  void countDetections(const Frame& f, const synth::FrameTruth& truth) {
+    if (!f.detections) return;
+    auto isPart = [&](cv::Point2f at, bool face) {
+      for (const synth::PersonTruth& p : truth.people) {
+        if (!p.visible || !p.insideZone) continue;
+        const double tol = tolerancePx(p);
+        if (face ? near(at, p.head2d, tol)
+                 : (near(at, p.leftHand2d, tol) || near(at, p.rightHand2d, tol)))
+          return true;
+      }
+      return false;
+    };
+    for (const FaceDetection& d : f.detections->faces) {
+      ++r_.detections;
+      if (!isPart(d.centre, true)) ++r_.falseDetections;
+    }
+    for (const HandDetection& d : f.detections->hands) {
+      ++r_.detections;
+      if (!isPart(d.centroid, false)) ++r_.falseDetections;
+    }
+  }
+
+  GodfatherElection election_;
+  double focal_, baseline_;
+  TrialResult& r_;
+};
+
+}  // namespace
+
+TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
+                             std::vector<std::unique_ptr<Stage>> extraStages,
+                             TrialFrameCallback onFrame) {
+  if (o.frames < 1)
+    throw Error("a tracking trial needs at least 1 frame, got " + std::to_string(o.frames));
+  const synth::SceneOptions sceneOptions = trialScene(o);
+  std::unique_ptr<FrameSource> source;
+  ClosedLoopSyntheticSource* closedLoop = nullptr;
+  const synth::SyntheticScene* scene = nullptr;
+  if (o.headControl) {
+    auto s = std::make_unique<ClosedLoopSyntheticSource>(
+        sceneOptions, o.frames, o.head.actuationDelayFrames, o.head.limits);
+    closedLoop = s.get();
+    scene = &s->scene();
+    source = std::move(s);
+  } else {
+    auto s = std::make_unique<SyntheticSource>(sceneOptions, o.frames);
+    scene = &s->scene();
+    source = std::move(s);
+  }
+
+  TrialResult result;
+  result.seed = o.seed;
+  result.scope = scope;
+  Scorer scorer(o, scene->focalPx(), scene->baselineM(), result);
+
+  PipelineOptions po;
+  po.mode = PipelineMode::Offline;
+  po.inFlight = o.inFlight;
+  po.maxFrames = o.frames;
+  po.onFrame = [&](const Frame& f) {
+    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!truth) throw Error("a synthetic frame without its truth");
+    bool truthGodfather = false;
+    const bool lost = scorer.score(f, *truth, truthGodfather);
+    if (onFrame) onFrame(TrialFrame{f, *truth, truthGodfather, lost});
+  };
+  const Backend& backend = findBackend(o.backend);
+  Pipeline pipeline(po);
+  pipeline.add(makeRectifyStage());
+  pipeline.add(makeDisparityStage(o.stereo, o.median, backend, o.threads));
+  pipeline.add(makeMaskStage(syntheticZoneThresholds(*scene), o.stereo, backend));
+  DetectorOptions detector = o.detector;
+  detector.scope = scope;
+  pipeline.add(makeDetectionStage(detector));
+  TrackerOptions tracker = o.tracker;
+  tracker.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
+  tracker.framesPerSecond = sceneOptions.framesPerSecond;
+  tracker.captureTime = false;
+  pipeline.add(makeTrackingStage(tracker));
+  if (closedLoop) pipeline.add(makeSyntheticHeadControlStage(o.head, *closedLoop));
+  for (auto& stage : extraStages)
+    pipeline.add(std::move(stage));
+  result.summary = pipeline.run(*source);
+  return result;
+}
+
+}  // namespace horopter

@@ -1,0 +1,111 @@
+// The detection stage: faces (OpenCV's Haar cascade) and hands (a skin colour
+// model, morphology, connected components) in the left rectified image,
+// either inside the zone of interaction (Frame::mask) or over the whole image
+// (for A/B comparison), and the body triangle head / left hand / right hand.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "horopter/pipeline.hpp"
+#include "horopter/skin_model.hpp"
+
+namespace horopter {
+
+// Debian's opencv-data.
+inline constexpr const char* kDefaultFaceCascade =
+    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+
+enum class DetectionScope {
+  HoropterRegion,  // only pixels inside the zone (the mask, closed and dilated a little)
+  FullImage,       // every pixel: what a detector without the horopter sees
+};
+const char* detectionScopeName(DetectionScope scope);
+
+struct DetectorOptions {
+  DetectionScope scope = DetectionScope::HoropterRegion;
+  std::string faceCascade = kDefaultFaceCascade;
+  double scaleFactor = 1.1;  // Haar pyramid step, > 1
+  int minNeighbors = 3;      // Haar grouping, >= 0
+  // The smallest face searched, full-resolution pixels; 0: a 16th of the
+  // image's width (40 px at 640: a face at 2.3 m with a 60 degree view).
+  int minFacePx = 0;
+  // The cascade runs on the image scaled by this (0.25..1), raised where the
+  // smallest face would fall under 20 px: a 40 px face is 30 px at 0.75,
+  // for far fewer windows.
+  double faceScale = 0.75;
+  // Region: the mask is closed with a disc this wide (fills the disparity
+  // holes on the hands), then dilated by maskGrowPx (keeps the silhouette's
+  // edge; more would let the background behind it in); >= 0.
+  int maskClosePx = 15;
+  int maskGrowPx = 2;
+  SkinModel skin;
+  int openPx = 5;           // morphological opening of the skin mask (removes speckle, thin strips)
+  int closePx = 5;          // closing (joins a hand's pieces)
+  int minHandAreaPx = 120;  // smallest skin component kept as a hand candidate
+  // The face rectangle grown by this fraction of its width, and down by
+  // neckFraction of its height, is not a hand (face and neck skin).
+  double faceMargin = 0.15;
+  double neckFraction = 0.8;
+};
+
+struct FaceDetection {
+  cv::Rect box;
+  cv::Point2f centre;
+  float width = 0;          // pixels
+  bool insideZone = false;  // the mask covers most of the face's central part
+};
+
+struct HandDetection {
+  cv::Point2f centroid;
+  cv::Rect box;
+  int areaPx = 0;
+  bool insideZone = false;  // the centroid lies in the (grown) mask
+};
+
+// The body triangle of one person. Left and right are the person's own.
+struct BodyTriangle {
+  cv::Point2f head, leftHand, rightHand;
+  cv::Point2f incentre;     // the centre of the inscribed circle
+  double perimeter = 0;     // pixels
+  double headAngleRad = 0;  // interior angle at the head vertex
+  bool degenerate = false;  // collinear or repeated vertices (incentre = centroid)
+};
+BodyTriangle bodyTriangle(cv::Point2f head, cv::Point2f leftHand, cv::Point2f rightHand);
+
+struct Detections {
+  DetectionScope scope = DetectionScope::HoropterRegion;
+  std::vector<FaceDetection> faces;  // sorted by position (deterministic)
+  std::vector<HandDetection> hands;  // skin components that are not faces, largest first
+  // The largest in-zone face with the nearest hand candidate on each side
+  // (the person's left hand appears on the image's right).
+  std::optional<BodyTriangle> triangle;
+  cv::Rect searched;                // the rectangle the detectors ran over
+  std::int64_t searchedPixels = 0;  // pixels the skin model classified
+};
+
+// Runs both detectors on one frame. Not thread-safe (one per pipeline lane).
+class Detector {
+ public:
+  // Throws horopter::Error for bad options or a cascade that cannot be loaded.
+  explicit Detector(DetectorOptions options);
+  ~Detector();
+  Detector(Detector&&) noexcept;
+  // Frame::left (BGR) and, for the region and the zone flags, Frame::mask.
+  Detections detect(const Frame& frame);
+  const DetectorOptions& options() const { return options_; }
+
+ private:
+  struct Impl;
+  DetectorOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The stage that fills Frame::detections.
+std::unique_ptr<Stage> makeDetectionStage(DetectorOptions options);
+
+}  // namespace horopter

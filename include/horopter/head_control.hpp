@@ -1,0 +1,128 @@
+// Head control: pan and tilt that keep the godfather's face centred, sent to
+// a horopter::hw::Head. Two formulas:
+//  - Atan2 (default): the exact angles that put the 3-D head point (rig
+//    frame, from the disparity) on the optical axis, given the pose the frame
+//    was captured with: pan = atan2(x_w, z_w), tilt = atan2(y_w, hypot(x_w, z_w))
+//    with w the point turned into the head's base frame.
+//  - Paper: tan(dtheta) = u / (phi f) with phi = d * lambda, u the face's
+//    offset from the principal point (px), f the focal length (px), d the
+//    head's distance (m) and lambda an empirical constant (1/m); phi = 1 gives
+//    the pinhole angle of the pixel.
+// The command is rate- and angle-limited, with a dead band against jitter.
+//
+// Determinism: offline, a command computed from frame N takes effect at frame
+// N + actuationDelayFrames exactly (the synthetic rig's capture waits for it),
+// so the outputs do not depend on threads or frames in flight.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "horopter/capture.hpp"
+#include "horopter/hardware/head.hpp"
+#include "horopter/pipeline.hpp"
+
+namespace horopter {
+
+enum class PanTiltFormula { Atan2, Paper };
+
+struct HeadControlOptions {
+  PanTiltFormula formula = PanTiltFormula::Atan2;
+  double lambda = 0.75;         // Paper: phi = d * lambda (1/m, empirical)
+  double gain = 0.7;            // fraction of the angular error corrected per command, (0, 1]
+  double deadbandRad = 0.035;   // errors below this (about 2 degrees) are left alone
+  double maxRateRadPerS = 1.0;  // each axis
+  hw::HeadLimits limits{-1.2, 1.2, -0.6, 0.6, false, 0, 0, 1.0};
+  double framesPerSecond = 30;         // the time between commands, for the rate limit
+  int actuationDelayFrames = 3;        // >= 1: a command from frame N acts at frame N + delay
+  double focalPx = 0, cx = 0, cy = 0;  // the rectified left camera (Paper; Atan2 fallback)
+};
+
+// Absolute pan and tilt that centre `rigPoint` (rig frame of a head at `pose`).
+hw::HeadAngles anglesToCentre(const cv::Point3f& rigPoint, const hw::HeadAngles& pose);
+// The paper's formula: the angle to add to the pose for an offset `offsetPx`
+// (pixels from the principal point) at distance `distanceM`.
+double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda);
+// The next command from the pose at capture towards `target`: dead band,
+// gain, rate limit over one frame, angle limits. Vergence is kept.
+hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& target,
+                            const HeadControlOptions& options);
+
+// The synthetic scene's virtual rig as a hw::Head. Two ways in:
+//  - post(frame, target): the deterministic path of the head-control stage;
+//    the capture of frame M (poseForFrame) waits until every frame up to
+//    M - delay has posted, then applies the latest target posted by them.
+//  - command(): the hw::Head path (live): the latest target wins and applies
+//    at the next frame captured.
+class SyntheticRigHead : public hw::Head {
+ public:
+  SyntheticRigHead(hw::HeadAngles initial, hw::HeadLimits limits, int actuationDelayFrames);
+  std::string name() const override { return "synthetic rig"; }
+  hw::HeadLimits limits() const override { return limits_; }
+  void command(const hw::HeadAngles& target, double speedRadPerS = 0) override;
+  std::optional<hw::HeadMeasurement> measured() const override;
+  void halt() override;
+
+  // Frames must be posted in increasing order (std::nullopt: no command).
+  void post(std::int64_t frame, const std::optional<hw::HeadAngles>& target);
+  // The pose to render frame `frame` with; throws horopter::Error when the
+  // frames it waits for have not posted within `timeout`.
+  hw::HeadAngles poseForFrame(std::int64_t frame,
+                              std::chrono::milliseconds timeout = std::chrono::seconds(10));
+  int actuationDelayFrames() const { return delay_; }
+
+ private:
+  hw::HeadAngles clamp(const hw::HeadAngles& a) const;
+  hw::HeadLimits limits_;
+  int delay_;
+  mutable std::mutex mutex_;
+  std::condition_variable posted_;
+  std::int64_t postedThrough_ = -1;
+  std::deque<std::pair<std::int64_t, hw::HeadAngles>> pending_;
+  std::optional<hw::HeadAngles> liveTarget_;
+  hw::HeadAngles pose_;
+};
+
+// The synthetic scene rendered with the rig's pose for each frame: the view
+// turns with the head, and so does the zone (closed loop).
+class ClosedLoopSyntheticSource : public FrameSource {
+ public:
+  // Offline only: capture of frame M waits for the head-control stage's post
+  // of frame M - delay, so the pipeline must hold that stage.
+  ClosedLoopSyntheticSource(const synth::SceneOptions& options, int frames,
+                            int actuationDelayFrames = HeadControlOptions{}.actuationDelayFrames,
+                            hw::HeadLimits limits = HeadControlOptions{}.limits);
+  std::string name() const override { return "synthetic (closed loop)"; }
+  bool next(Frame& frame) override;
+  synth::SyntheticScene& scene() { return scene_; }
+  const std::shared_ptr<SyntheticRigHead>& head() const { return head_; }
+
+ private:
+  synth::SyntheticScene scene_;
+  std::shared_ptr<SyntheticRigHead> head_;
+  int frames_;
+  int next_ = 0;
+};
+
+// Where commands go: (frame they were computed from, command or none).
+using HeadCommandSink = std::function<void(std::int64_t, const std::optional<hw::HeadAngles>&)>;
+// The pose the frame was captured with (synthetic: its truth; a real head:
+// its measurement at capture).
+using CapturePose = std::function<std::optional<hw::HeadAngles>(const Frame&)>;
+
+// Needs Frame::tracking; commands only for an elected godfather whose head
+// was observed this frame; posts every frame (std::nullopt when none) and
+// records the command in a copy of Frame::tracking.
+std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options, CapturePose pose,
+                                            HeadCommandSink sink);
+// The stage wired to a closed-loop synthetic source.
+std::unique_ptr<Stage> makeSyntheticHeadControlStage(HeadControlOptions options,
+                                                     ClosedLoopSyntheticSource& source);
+
+}  // namespace horopter

@@ -1,0 +1,77 @@
+// The tracking stage: the godfather election over the detected faces, then
+// the godfather's head and both hands tracked by constant-velocity Kalman
+// filters with gating. Fills Frame::tracking and Frame::body (the contract
+// with movement analysis, horopter/body.hpp).
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "horopter/detection.hpp"
+#include "horopter/geometry.hpp"
+#include "horopter/godfather.hpp"
+#include "horopter/hardware/head.hpp"
+#include "horopter/kalman_track.hpp"
+#include "horopter/pipeline.hpp"
+
+namespace horopter {
+
+struct TrackerOptions {
+  ElectionOptions election;
+  KalmanOptions head{800, 3, 200, 13.8, 12};
+  KalmanOptions hands{2500, 4, 400, 13.8, 15};
+  double coastS = 0.4;  // a track without detections is dropped after this long
+  // A hand candidate must lie within this many face widths of the head, and
+  // its area be at most this many face areas (larger: merged with clutter).
+  double reachFaceWidths = 7;
+  double maxHandAreaFaces = 1.5;
+  // The frame's time: index / framesPerSecond (deterministic, for recorded
+  // and synthetic input) or, with captureTime, the capture timestamps.
+  double framesPerSecond = 30;
+  bool captureTime = false;
+  // The rectified rig, for 3-D positions from Frame::disparity (focalPx 0:
+  // no 3-D, rig coordinates stay NaN).
+  RectifiedGeometry rig;
+};
+
+struct TrackingState {
+  double timeS = 0;
+  ElectionState election = ElectionState::None;
+  double candidateS = 0;  // how long the candidate has been inside
+  float faceWidthPx = 0;  // the subject's last face width
+  // The subject's tracks (candidate or godfather); Frame::body holds them
+  // only once the godfather is elected.
+  PartState head, leftHand, rightHand;
+  std::optional<BodyTriangle> triangle;  // from the godfather's tracked parts
+  // Filled by the head-control stage: the pan/tilt command issued from this
+  // frame, and the frame it takes effect at.
+  std::optional<hw::HeadAngles> headCommand;
+  std::int64_t headCommandFrame = -1;
+};
+
+// The tracker's state machine, one frame at a time (in order).
+class BodyTracker {
+ public:
+  explicit BodyTracker(TrackerOptions options);  // throws horopter::Error for bad options
+  ~BodyTracker();
+  BodyTracker(BodyTracker&&) noexcept;
+  // Needs frame.detections; fills and returns the state, and `body`.
+  TrackingState update(const Frame& frame, BodySample& body);
+  const TrackerOptions& options() const { return options_; }
+
+ private:
+  struct Impl;
+  TrackerOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The stage that fills Frame::tracking and Frame::body.
+std::unique_ptr<Stage> makeTrackingStage(TrackerOptions options);
+
+// The rig-frame point (metres) seen at `pixel` of the left image, from the
+// median valid disparity of Frame::disparity within `window` around it; NaN
+// when no valid disparity is there.
+cv::Point3f rigPointFromDisparity(const cv::Mat& disparity, const RectifiedGeometry& rig,
+                                  cv::Point2f pixel, cv::Rect window);
+
+}  // namespace horopter
