@@ -109,7 +109,8 @@ int runHead(Args& args) {
   std::string device = port.value_or("");
   if (sim && protocol == "dynamixel") {
     std::vector<std::uint8_t> simIds;
-    for (int id : ids) simIds.push_back(static_cast<std::uint8_t>(id));
+    for (int id : ids)
+      simIds.push_back(static_cast<std::uint8_t>(id));
     simBus = std::make_unique<hw::SimDynamixelBus>(simIds);
     device = simBus->port();
   } else if (sim) {
