@@ -1,7 +1,8 @@
 // Embedding the C++ API: frames of the built-in synthetic scene through the
 // stereo front end and the horopter mask, compared with the scene's truth.
 //
-//   embed [--frames N] [--backend NAME]
+//   embed [--frames N] [--start I] [--backend NAME]
+// (from frame 60 on, the main person stands inside the zone)
 #include <horopter/frontend.hpp>
 #include <horopter/geometry.hpp>
 #include <horopter/opencv.hpp>
@@ -15,14 +16,17 @@
 
 int main(int argc, char** argv) {
   int frames = 3;
+  int start = 60;
   std::string backend = "auto";
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
       frames = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--start") == 0 && i + 1 < argc) {
+      start = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--backend") == 0 && i + 1 < argc) {
       backend = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: embed [--frames N] [--backend NAME]\n");
+      std::fprintf(stderr, "usage: embed [--frames N] [--start I] [--backend NAME]\n");
       return 2;
     }
   }
@@ -38,7 +42,7 @@ int main(int argc, char** argv) {
                                       horopter::findBackend(backend));
     const horopter::RectifiedGeometry geometry{scene.focalPx(), scene.cx(), scene.baselineM(),
                                                scene.cy()};
-    for (int i = 0; i < frames; ++i) {
+    for (int i = start; i < start + frames; ++i) {
       const horopter::synth::SyntheticFrame frame = scene.render(i);
       cv::Mat left, right;
       cv::cvtColor(frame.left, left, cv::COLOR_BGR2GRAY);

@@ -14,5 +14,6 @@ void bindGeometry(py::module_& m);     // circle, fixation, threshold table, dep
 void bindCalibration(py::module_& m);  // calibration files, rectification
 void bindScene(py::module_& m);        // the synthetic stereo scene
 void bindPipeline(py::module_& m);     // the frame pipeline, iterated from Python
+void bindMovement(py::module_& m);     // the movement classifier, body tracks
 
 }  // namespace horopter::python

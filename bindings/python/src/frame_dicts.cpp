@@ -53,6 +53,44 @@ py::dict bodyDict(const BodySample& body) {
   return d;
 }
 
+BodySample bodyFromDict(py::handle dict) {
+  const auto part = [](py::handle d) {
+    PartState p;
+    p.tracked = d["tracked"].cast<bool>();
+    p.observed = d["observed"].cast<bool>();
+    const auto image = d["image"].cast<std::pair<float, float>>();
+    p.image = {image.first, image.second};
+    const auto rig = d["rig"].cast<std::tuple<float, float, float>>();
+    p.rig = {std::get<0>(rig), std::get<1>(rig), std::get<2>(rig)};
+    return p;
+  };
+  BodySample b;
+  b.frame = dict["frame"].cast<std::int64_t>();
+  b.timeS = dict["time_s"].cast<double>();
+  b.godfather = dict["godfather"].cast<bool>();
+  b.head = part(dict["head"]);
+  b.leftHand = part(dict["left_hand"]);
+  b.rightHand = part(dict["right_hand"]);
+  return b;
+}
+
+py::dict movementDict(const MovementState& state) {
+  py::dict posterior;
+  for (int i = 0; i < kMovementClassCount; ++i)
+    posterior[movementClassName(static_cast<MovementClass>(i))] =
+        state.posterior[static_cast<std::size_t>(i)];
+  py::dict d;
+  d["features_valid"] = state.features.valid;
+  d["likeliest"] = movementClassName(state.likeliest);
+  d["posterior"] = posterior;
+  d["decision"] = state.decision ? py::object(py::str(movementClassName(*state.decision)))
+                                 : py::object(py::none());
+  d["action"] = robotActionName(state.action);
+  d["action_started"] = state.actionStarted;
+  d["interaction_stopped"] = state.interactionStopped;
+  return d;
+}
+
 py::dict truthDict(const synth::FrameTruth& truth) {
   py::dict d;
   d["index"] = truth.index;
@@ -88,14 +126,14 @@ py::dict frameDict(const Frame& frame) {
   d["body"] = bodyDict(frame.body);
   const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth);
   d["truth"] = truth ? py::object(truthDict(*truth)) : py::none();
-  // ---- The interaction half (issues 7 and 8) -------------------------------
-  // Frame::detections, ::tracking and ::movement are filled by stages whose
-  // headers (horopter/detection.hpp, tracking.hpp, movement.hpp) have not
-  // landed yet: when they do, turn each into a plain dict here (faces, hands,
-  // tracks with ids, the movement posterior and decision).
+  d["movement"] = frame.movement ? py::object(movementDict(*frame.movement)) : py::none();
+  // ---- Detection and tracking (issue 7) -------------------------------------
+  // Frame::detections and ::tracking are filled by stages whose headers
+  // (horopter/detection.hpp, tracking.hpp) have not landed yet: when they do,
+  // turn each into a plain dict here (faces, hands, tracks with ids, the
+  // godfather, the head command).
   d["detections"] = py::none();
   d["tracking"] = py::none();
-  d["movement"] = py::none();
   return d;
 }
 

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include "horopter/body.hpp"
+#include "horopter/movement.hpp"
 #include "horopter/pipeline.hpp"
 #include "horopter/synthetic_scene.hpp"
 
@@ -13,10 +14,15 @@ namespace horopter::python {
 namespace py = pybind11;
 
 py::dict bodyDict(const BodySample& body);
+// The inverse, for tracks built in Python: KeyError/TypeError for a bad dict.
+BodySample bodyFromDict(py::handle dict);
+// likeliest, posterior {name: p}, decision (a name or None), action,
+// action_started, interaction_stopped, features_valid.
+py::dict movementDict(const MovementState& state);
 py::dict truthDict(const synth::FrameTruth& truth);
 // index, time_s, left, right, left_grey, right_grey, disparity, thresholds,
-// mask, body, truth (synthetic sources), and detections / tracking /
-// movement (None until those stages exist).
+// mask, body, truth (synthetic sources), movement (a dict when a movement
+// stage ran), and detections / tracking (None until those headers land).
 py::dict frameDict(const Frame& frame);
 
 }  // namespace horopter::python

@@ -24,4 +24,5 @@ PYBIND11_MODULE(horopter, m) {
   horopter::python::bindCalibration(m);
   horopter::python::bindScene(m);
   horopter::python::bindPipeline(m);
+  horopter::python::bindMovement(m);
 }
