@@ -111,6 +111,12 @@ void RmpBase::receiveAll(Clock::time_point now) {
   CanFrame f;
   while (transport_->receive(f, std::chrono::milliseconds(0))) {
     std::lock_guard lock(mutex_);
+    if (const auto enabled = rmp::decodeMotorStatus(f)) {
+      if (health_.motorsEnabled.value_or(true) && !*enabled)
+        health_.lastFault = "the RMP reports its motors disabled (its e-stop is pressed)";
+      health_.motorsEnabled = *enabled;
+      continue;
+    }
     if (f.id == rmp::kStatusFirstId) partial_.receivedMask = 0;  // a new series starts
     try {
       if (!rmp::decodeStatusFrame(f, options_.scaling, partial_)) continue;

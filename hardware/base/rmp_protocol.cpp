@@ -145,6 +145,19 @@ bool decodeStatusFrame(const CanFrame& frame, const Scaling& s, Status& st) {
   return true;
 }
 
+std::optional<bool> decodeMotorStatus(const CanFrame& frame) {
+  if (frame.id != kMotorStatusId || frame.length < 4) return std::nullopt;
+  return frame.data[3] == 0x80;
+}
+
+CanFrame encodeMotorStatus(bool motorsEnabled) {
+  CanFrame f;
+  f.id = kMotorStatusId;
+  f.length = 8;
+  f.data[3] = motorsEnabled ? 0x80 : 0x00;
+  return f;
+}
+
 std::array<CanFrame, 8> encodeStatusFrames(const Status& st, const Scaling& s) {
   std::array<CanFrame, 8> frames{};
   for (std::uint32_t i = 0; i < 8; ++i) {

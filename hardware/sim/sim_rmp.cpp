@@ -27,6 +27,11 @@ void SimRmp::injectFault(SimRmpFault fault, int series) {
   faultSeries_ = series;
 }
 
+void SimRmp::pressEmergencyStop(bool pressed) {
+  std::lock_guard lock(mutex_);
+  buttonPressed_ = pressed;
+}
+
 SimRmpTruth SimRmp::truth() const {
   std::lock_guard lock(mutex_);
   return truth_;
@@ -56,13 +61,14 @@ void SimRmp::step(Clock::time_point now) {
   }
   std::array<CanFrame, 8> frames;
   SimRmpFault fault;
+  bool enabled;
   {
     std::lock_guard lock(mutex_);
     const double dt = haveTime_ ? std::chrono::duration<double>(now - last_).count() : 0.0;
     last_ = now;
     haveTime_ = true;
     // Kinematic unicycle: the base follows the command (the driver limits acceleration).
-    const BaseVelocity v = commanded_;
+    const BaseVelocity v = buttonPressed_ ? BaseVelocity{} : commanded_;
     const double mid = truth_.heading + v.angular * dt / 2;
     truth_.x += v.linear * dt * std::cos(mid);
     truth_.y += v.linear * dt * std::sin(mid);
@@ -79,6 +85,7 @@ void SimRmp::step(Clock::time_point now) {
     reported_.servoFrames += dt;
     if (reported_.servoFrames > 600) reported_.servoFrames -= 600;
     frames = rmp::encodeStatusFrames(reported_, options_.scaling);
+    enabled = !buttonPressed_;
     fault = faultSeries_ > 0 ? fault_ : SimRmpFault::kNone;
     if (faultSeries_ > 0) --faultSeries_;
   }
@@ -89,6 +96,7 @@ void SimRmp::step(Clock::time_point now) {
       if (fault == SimRmpFault::kBadLength && fr.id == 0x402) fr.length = 3;
       bus_.send(fr);
     }
+    bus_.send(rmp::encodeMotorStatus(enabled));
   } catch (const LinkError&) {
   }
 }

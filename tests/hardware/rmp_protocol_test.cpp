@@ -163,3 +163,15 @@ TEST(RmpProtocol, UnknownModelNamesAreErrors) {
   EXPECT_THROW(rmp::scalingByName("rmp999"), horopter::Error);
   EXPECT_EQ(rmp::scalingByName("rmp400").countsPerMps, 332.0);
 }
+
+TEST(RmpProtocol, MotorStatusHeartbeat) {
+  CanFrame f;
+  f.id = 0x680;
+  f.data = {0, 0, 0, 0x80, 0, 0, 0, 0};
+  EXPECT_EQ(rmp::decodeMotorStatus(f), true);
+  f.data[3] = 0x00;
+  EXPECT_EQ(rmp::decodeMotorStatus(f), false);
+  f.id = 0x401;
+  EXPECT_EQ(rmp::decodeMotorStatus(f), std::nullopt);
+  EXPECT_EQ(rmp::decodeMotorStatus(rmp::encodeMotorStatus(true)), true);
+}

@@ -247,3 +247,15 @@ TEST(RmpDriverSafety, ShutdownSendsZeroVelocity) {
   rig.sim.step(rig.now);
   EXPECT_EQ(rig.sim.truth().velocity.linear, 0.0);
 }
+
+TEST(RmpDriverSafety, TheRmpsOwnEmergencyStopIsReported) {
+  SteppedRig rig(fastLimits());
+  rig.run(100ms, BaseVelocity{0.2, 0.0});
+  EXPECT_EQ(rig.base.health().motorsEnabled, true);
+  rig.sim.pressEmergencyStop(true);
+  rig.run(50ms, BaseVelocity{0.2, 0.0});
+  const BaseHealth h = rig.base.health();
+  EXPECT_EQ(h.motorsEnabled, false);
+  EXPECT_NE(h.lastFault.find("e-stop is pressed"), std::string::npos);
+  EXPECT_EQ(rig.base.odometry()->velocity.linear, 0.0);
+}

@@ -47,6 +47,8 @@ struct BaseHealth {
   long badFrames = 0;       // status frames that did not decode
   long framesSent = 0;
   long seriesReceived = 0;
+  // The RMP's own motor status (0x680): false while its e-stop button is pressed.
+  std::optional<bool> motorsEnabled;
   std::string lastFault;  // empty when nothing went wrong yet
   BaseVelocity lastSent;  // what the last motion frame asked for
 };

@@ -32,6 +32,8 @@
 //   0x407 commanded velocity                       int16 / countsPerMps -> m/s
 //         commanded yaw rate                       int16 (libsegwayrmp divides by 1024;
 //                                                  we keep the raw counts)
+//   0x680 motor status (outside the series): data[3] == 0x80 motors enabled,
+//         anything else: the RMP's own emergency stop is pressed
 //   int16 values are big-endian; an int32 is sent as two big-endian 16-bit
 //   words, the LOW word first (libsegwayrmp's getInt()).
 //
@@ -45,6 +47,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -57,6 +60,7 @@ constexpr std::uint32_t kCommandId = 0x413;
 constexpr std::uint32_t kShutdownId = 0x412;
 constexpr std::uint32_t kStatusFirstId = 0x400;
 constexpr std::uint32_t kStatusLastId = 0x407;
+constexpr std::uint32_t kMotorStatusId = 0x680;
 constexpr std::size_t kUsbFrameSize = 18;
 
 // The one place where SI units meet counts (libsegwayrmp SetConstantsBySegwayType_).
@@ -120,6 +124,10 @@ struct Status {
 // (other traffic on the bus). Throws horopter::Error for a status id with the
 // wrong length.
 bool decodeStatusFrame(const CanFrame& frame, const Scaling& scaling, Status& status);
+// The 0x680 motor status: true when the motors are enabled, false when the
+// RMP's own e-stop is pressed; nullopt for any other frame.
+std::optional<bool> decodeMotorStatus(const CanFrame& frame);
+CanFrame encodeMotorStatus(bool motorsEnabled);
 // The eight frames of a series (for the simulator), the inverse of the decoder
 // up to the counts' resolution.
 std::array<CanFrame, 8> encodeStatusFrames(const Status& status, const Scaling& scaling);

@@ -49,6 +49,8 @@ class SimRmp {
   void step(Clock::time_point now);
   void injectFault(SimRmpFault fault, int series);
   SimRmpTruth truth() const;
+  // The RMP's own e-stop button: motors disabled (0x680 says so), the base stops.
+  void pressEmergencyStop(bool pressed);
   void stop();
 
  private:
@@ -62,6 +64,7 @@ class SimRmp {
   bool haveTime_ = false;
   Clock::time_point last_{};
   SimRmpFault fault_ = SimRmpFault::kNone;
+  bool buttonPressed_ = false;
   int faultSeries_ = 0;
   std::atomic<bool> stop_{false};
   std::thread thread_;
