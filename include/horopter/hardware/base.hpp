@@ -1,6 +1,12 @@
 // The robot's mobile base as the vision engine sees it: velocity commands
 // in, odometry out, a latching emergency stop. The Segway RMP driver
 // (hardware/) and its simulator implement it.
+//
+// Driver: RmpBase (rmp_base.hpp) over SocketCAN, the RMP's USB interface or
+// the in-process bus of the simulated RMP; its safety rules (watchdog,
+// velocity and acceleration limits, e-stop) are VelocityGovernor
+// (velocity_governor.hpp); health() reports watchdog trips, status timeouts,
+// bad frames, the RMP's own e-stop and a lost link.
 #pragma once
 
 #include <chrono>

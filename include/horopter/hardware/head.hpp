@@ -1,6 +1,11 @@
 // The robot's stereo head as the vision engine sees it: commanded and measured
 // pan, tilt and vergence. Drivers (Dynamixel, PTU; hardware/) and the
 // synthetic scene's virtual rig implement it; the pipeline never blocks on it.
+//
+// Drivers: DynamixelHead (dynamixel_head.hpp, DYNAMIXEL Protocol 2.0 X series,
+// with vergence) and PtuHead (ptu_head.hpp, FLIR PTU ASCII), each with a
+// health() that reports timeouts, corrupt replies and a lost link; a whole
+// simulated robot for the pipeline is in sim_robot.hpp.
 #pragma once
 
 #include <chrono>
