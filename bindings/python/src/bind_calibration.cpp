@@ -30,9 +30,10 @@ class Rectifier {
     const cv::Mat l = matOver(inputView(left, {PixelType::U8C1, PixelType::U8C3}, "left image"));
     const cv::Mat r = matOver(inputView(right, {PixelType::U8C1, PixelType::U8C3}, "right image"));
     cv::Mat outLeft, outRight;
-    std::lock_guard lock(mutex_);
     {
+      // The lock only with the GIL released (see StereoMatcher in bind_stereo.cpp).
       py::gil_scoped_release release;
+      std::lock_guard lock(mutex_);
       rectifier_.rectify(l, r);
       // The rectifier reuses its buffers on the next call.
       outLeft = rectifier_.left().clone();

@@ -11,43 +11,51 @@ namespace horopter::python {
 
 namespace {
 
-// One front end per matcher; the lock makes concurrent calls on the same
-// matcher wait their turn (the front end reuses its buffers).
+// One front end per matcher. The lock makes concurrent calls on the same
+// matcher wait their turn (the front end reuses its buffers); it is only ever
+// taken with the GIL released, so a thread waiting for it never holds the
+// GIL that the thread inside needs to hand back its result.
 class StereoMatcher {
  public:
   StereoMatcher(const StereoParams& stereo, const MedianParams& median, const std::string& backend,
                 int threads)
       : frontend_(stereo, median, findBackend(backend), threads) {}
 
-  py::array compute(py::handle left, py::handle right) {
+  py::object compute(py::handle left, py::handle right) {
     const ConstImageView l = inputView(left, {PixelType::U8C1}, "left image");
     const ConstImageView r = inputView(right, {PixelType::U8C1}, "right image");
+    py::object out;
+    py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
-    {
-      py::gil_scoped_release release;
-      frontend_.computeDisparity(l, r);
-    }
-    return copyOf(frontend_.disparity());
+    frontend_.computeDisparity(l, r);
+    py::gil_scoped_acquire acquire;
+    out = copyOf(frontend_.disparity());
+    return out;
   }
 
-  py::tuple computeMask(py::handle thresholds, py::handle image) {
+  py::object computeMask(py::handle thresholds, py::handle image) {
     const auto table = int16Span(thresholds, "thresholds");
     const ConstImageView view = image.is_none()
                                     ? ConstImageView{}
                                     : inputView(image, {PixelType::U8C1, PixelType::U8C3}, "image");
+    py::object out;
+    py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
-    {
-      py::gil_scoped_release release;
-      frontend_.computeMask(table, view);
-    }
+    frontend_.computeMask(table, view);
+    py::gil_scoped_acquire acquire;
     // Without an image the front end keeps an older segmented image: None instead.
-    return py::make_tuple(copyOf(frontend_.mask()),
-                          image.is_none() ? py::object(py::none()) : copyOf(frontend_.segmented()));
+    out = py::make_tuple(copyOf(frontend_.mask()),
+                         image.is_none() ? py::object(py::none()) : copyOf(frontend_.segmented()));
+    return out;
   }
 
   py::dict timings() {
-    std::lock_guard lock(mutex_);
-    const FrontendTimings& t = frontend_.timings();
+    FrontendTimings t;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard lock(mutex_);
+      t = frontend_.timings();
+    }
     py::dict d;
     d["prefilter"] = t.prefilter;
     d["match"] = t.match;

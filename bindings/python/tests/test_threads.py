@@ -62,3 +62,31 @@ def test_python_runs_while_a_kernel_computes(grey_pair):
     # Holding the GIL, compute() would let this loop run only between the
     # event and the call (a few iterations); released, it runs throughout.
     assert spins > 10000, spins
+
+
+def test_threads_sharing_one_matcher_take_turns(grey_pair):
+    """Concurrent calls on one matcher wait for each other (no deadlock with the
+    GIL, no mixed-up buffers)."""
+    left, right = grey_pair
+    matcher = horopter.StereoMatcher(numDisparities=32, backend="scalar", threads=2)
+    expected = matcher.compute(left, right)
+    thresholds = np.full(left.shape[1], 8 * 16, np.int16)
+    expected_mask, _ = matcher.compute_mask(thresholds)
+    failures = []
+
+    def work():
+        for _ in range(4):
+            if not np.array_equal(matcher.compute(left, right), expected):
+                failures.append("disparity")
+            mask, _ = matcher.compute_mask(thresholds)
+            matcher.timings
+            if not np.array_equal(mask, expected_mask):
+                failures.append("mask")
+
+    threads = [threading.Thread(target=work) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+    assert not any(t.is_alive() for t in threads), "threads sharing a matcher deadlocked"
+    assert failures == []
