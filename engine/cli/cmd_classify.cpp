@@ -58,8 +58,10 @@ int runClassify(Args& args) {
            "Runs the movement chain (LMA features, the Bayesian classifier, the behaviour\n"
            "layer) and prints each decision with its posterior and the robot's action.\n\n"
            "Input:\n"
-           "  --track FILE            a recorded body track (CSV, "
-           "include/horopter/body_track_file.hpp)\n"
+           "  --track FILE            a recorded body track (CSV, body_track_file.hpp); scored\n"
+           "                          like --synthetic when it has a truth column "
+           "(eval-interaction\n"
+           "                          --write-tracks DIR writes such tracks from rendered trials)\n"
            "  --synthetic S[:N]       N labelled sequences of the synthetic movement generator\n"
            "                          (ground-truth poses with tracking-like noise, no "
            "rendering),\n"
@@ -92,8 +94,9 @@ int runClassify(Args& args) {
   bool labelled = false;
   if (!track.empty()) {
     LabelledSequence s;
-    s.samples = readBodyTrack(track);
+    s.samples = readBodyTrack(track, &s.labels);
     if (s.samples.empty()) throw Error("track file '" + track + "' has no samples");
+    labelled = !s.labels.empty();
     inputs.push_back(std::move(s));
   } else {
     std::uint64_t first = 0;
@@ -109,7 +112,7 @@ int runClassify(Args& args) {
     for (int i = 0; i < count; ++i)
       inputs.push_back(syntheticSequence(first + i));
     if (!writeTrack.empty()) {
-      writeBodyTrack(writeTrack, inputs.front().samples);
+      writeBodyTrack(writeTrack, inputs.front().samples, inputs.front().labels);
       std::cerr << "wrote " << writeTrack << "\n";
     }
     labelled = true;

@@ -26,10 +26,17 @@ std::string header() {
 
 }  // namespace
 
-void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples) {
+void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples,
+                    const std::vector<MovementClass>& truth) {
+  if (!truth.empty() && truth.size() != samples.size())
+    throw Error("writeBodyTrack: one truth label per sample, or none");
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   std::ofstream out(path);
   if (!out) throw Error("cannot write the track file '" + path + "'");
-  out << kMagic << '\n' << header() << '\n';
+  out << kMagic << '\n' << header() << (truth.empty() ? "" : ",truth") << '\n';
+  std::size_t index = 0;
   char buf[160];
   for (const BodySample& s : samples) {
     std::snprintf(buf, sizeof buf, "%lld,%.6f,%d", static_cast<long long>(s.frame), s.timeS,
@@ -40,12 +47,15 @@ void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samp
                     p->observed ? 1 : 0, p->image.x, p->image.y, p->rig.x, p->rig.y, p->rig.z);
       out << buf;
     }
+    if (!truth.empty()) out << ',' << movementClassName(truth[index]);
+    ++index;
     out << '\n';
   }
   if (!out) throw Error("writing the track file '" + path + "' failed");
 }
 
-std::vector<BodySample> readBodyTrack(const std::string& path) {
+std::vector<BodySample> readBodyTrack(const std::string& path, std::vector<MovementClass>* truth) {
+  if (truth) truth->clear();
   if (!std::filesystem::exists(path)) throw Error("track file '" + path + "' does not exist");
   std::ifstream in(path);
   if (!in) throw Error("cannot read the track file '" + path + "'");
@@ -60,12 +70,21 @@ std::vector<BodySample> readBodyTrack(const std::string& path) {
     fail(std::string("not a horopter body track (the first line must be '") + kMagic + "')");
   std::getline(in, line);
   ++lineNo;
-  if (line != header()) fail("unexpected column header");
+  const bool labelled = line == header() + ",truth";
+  if (line != header() && !labelled) fail("unexpected column header");
   std::vector<BodySample> samples;
   while (std::getline(in, line)) {
     ++lineNo;
     if (line.empty()) continue;
     std::vector<double> v;
+    if (labelled) {
+      const auto comma = line.rfind(',');
+      const auto label = movementClassFromName(line.substr(comma + 1));
+      if (comma == std::string::npos || !label)
+        fail("the truth column holds '" + line.substr(comma + 1) + "', not a movement name");
+      if (truth) truth->push_back(*label);
+      line.erase(comma);
+    }
     std::stringstream cells(line);
     for (std::string cell; std::getline(cells, cell, ',');) {
       if (cell == "nan" || cell == "-nan") {

@@ -176,6 +176,9 @@ MovementModel MovementModel::parse(const std::string& text, const std::string& s
 }
 
 void MovementModel::save(const std::string& path) const {
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   std::ofstream out(path, std::ios::binary);
   if (!out) throw Error("cannot write the movement model to '" + path + "'");
   out << serialize();

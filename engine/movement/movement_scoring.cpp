@@ -13,7 +13,10 @@ std::vector<MovementSegment> scoreSegments(const std::vector<ScoredFrame>& frame
     std::int64_t j = i;
     while (j + 1 < n && frames[j + 1].truth == frames[i].truth)
       ++j;
-    if (frames[i].truth != MovementClass::None && j + 1 < n) {
+    std::int64_t interacting = 0;
+    for (std::int64_t k = i; k <= j; ++k)
+      interacting += frames[k].interacting ? 1 : 0;
+    if (frames[i].truth != MovementClass::None && j + 1 < n && 2 * interacting > j - i + 1) {
       MovementSegment s;
       s.truth = frames[i].truth;
       s.firstFrame = i;

@@ -6,18 +6,24 @@
 //     <part>_x,<part>_y,<part>_z   for part = head, left_hand, right_hand
 //
 // u, v: left rectified image, pixels; x, y, z: rig frame, metres ("nan" when
-// the depth is unknown); flags 0 or 1.
+// the depth is unknown); flags 0 or 1. An optional last column `truth` holds
+// the movement being performed (movementClassName), when it is known.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "horopter/body.hpp"
+#include "horopter/movement.hpp"
 
 namespace horopter {
 
-void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples);
+// `truth`: empty, or one movement per sample (written as the truth column).
+void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples,
+                    const std::vector<MovementClass>& truth = {});
 // Throws horopter::Error naming the file and line for a malformed file.
-std::vector<BodySample> readBodyTrack(const std::string& path);
+// `truth` (if given) receives the truth column, empty when the file has none.
+std::vector<BodySample> readBodyTrack(const std::string& path,
+                                      std::vector<MovementClass>* truth = nullptr);
 
 }  // namespace horopter

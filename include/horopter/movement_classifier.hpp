@@ -55,8 +55,8 @@ namespace horopter {
 
 struct MovementModelParams {
   double stay = 0.97;               // P(M_t = M_{t-1}), in (0, 1)
-  double evidenceWeight = 0.35;     // exponent of each frame's likelihood, in (0, 1]
-  double decisionThreshold = 0.85;  // posterior to decide a movement, in (0.5, 1)
+  double evidenceWeight = 0.15;     // exponent of each frame's likelihood, in (0, 1]
+  double decisionThreshold = 0.95;  // posterior to decide a movement, in (0.5, 1)
   double rearmThreshold = 0.3;      // posterior below which it can be decided again
   double alpha = 1.0;               // Dirichlet prior of every table, > 0
 };

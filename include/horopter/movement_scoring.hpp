@@ -9,7 +9,8 @@
 //   classification rate   = correct decisions / segments with the tracker on
 //   real classification   = correct decisions with the tracker on / segments
 //                           (a lost tracker counts as a miss)
-// Segments cut by the end of the sequence are not scored. Decisions outside
+// Segments cut by the end of the sequence, and segments where the performer
+// is not (yet) the godfather by the truth for most frames, are not scored. Decisions outside
 // every segment's window are counted as spurious.
 #pragma once
 
@@ -25,6 +26,9 @@ struct ScoredFrame {
   MovementClass truth = MovementClass::None;
   std::optional<MovementClass> decision;
   bool onTarget = true;  // the tracker followed the performer this frame
+  // The performer is the godfather by the truth (the interaction has begun);
+  // segments mostly outside the interaction are not scored.
+  bool interacting = true;
 };
 
 struct MovementSegment {

@@ -52,5 +52,14 @@ TEST(MovementScoring, ASegmentCutByTheEndIsNotScored) {
   EXPECT_EQ(scoreSegments(f, 2).size(), 1u);
 }
 
+TEST(MovementScoring, SegmentsBeforeTheInteractionBeganAreNotScored) {
+  auto f = frames("..cccc...pppp...");
+  for (int i = 0; i < 5; ++i)
+    f[i].interacting = false;  // circle: 3 of 4 frames outside
+  const auto segs = scoreSegments(f, 2);
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].truth, MovementClass::Pointing);
+}
+
 }  // namespace
 }  // namespace horopter
