@@ -33,6 +33,7 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
     const auto& d = replies[0].data;
     modelNumbers_.push_back(d.size() >= 2 ? dxl::fromLittleEndian(std::span(d).first(2)) : -1);
   }
+  readServoLimits();
   for (std::uint8_t id : ids_) {
     const std::vector<std::uint8_t> one = {1};
     if (exchange(dxl::writePacket(id, options_.model.torqueEnableAddress, one), {id}).empty())
@@ -53,6 +54,35 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
 
 DynamixelHead::~DynamixelHead() {
   shutdown();
+}
+
+// Velocity Limit, Max and Min Position Limit are consecutive (44, 48, 52 on the X series).
+void DynamixelHead::readServoLimits() {
+  const auto& m = options_.model;
+  const std::uint16_t first = m.velocityLimitAddress;
+  const std::uint16_t length = static_cast<std::uint16_t>(m.minPositionLimitAddress + 4 - first);
+  HeadLimits& l = options_.limits;
+  auto axis = [&](std::uint8_t id, int direction, double& lo, double& hi) {
+    const auto r = exchange(dxl::readPacket(id, first, length), {id});
+    if (r.empty() || r[0].data.size() != length)
+      throw Error("DYNAMIXEL ID " + std::to_string(id) + " did not return its limits (Read " +
+                  std::to_string(first) + ", " + std::to_string(length) + " bytes)");
+    const auto& d = r[0].data;
+    auto at = [&](std::uint16_t address) {
+      return dxl::fromLittleEndian(std::span(d).subspan(address - first, 4));
+    };
+    const double a = direction * dxl::ticksToRadians(at(m.minPositionLimitAddress), m);
+    const double b = direction * dxl::ticksToRadians(at(m.maxPositionLimitAddress), m);
+    lo = std::max(lo, std::min(a, b));
+    hi = std::min(hi, std::max(a, b));
+    const std::int32_t velocity = at(m.velocityLimitAddress);
+    if (velocity > 0)
+      l.maxSpeed = std::min(l.maxSpeed, dxl::velocityUnitsToRadPerSecond(velocity, m));
+  };
+  axis(options_.panId, options_.panDirection, l.panMin, l.panMax);
+  axis(options_.tiltId, options_.tiltDirection, l.tiltMin, l.tiltMax);
+  if (l.panMin > l.panMax || l.tiltMin > l.tiltMax)
+    throw Error("the requested head limits do not overlap the servos' Min/Max Position Limits");
 }
 
 std::string DynamixelHead::name() const {

@@ -9,9 +9,6 @@ namespace horopter::hw {
 namespace {
 constexpr std::uint16_t kModelNumber = 1020;  // XM430-W350
 constexpr std::uint8_t kFirmware = 45;
-// Fastest motion when Profile Velocity is 0 ("infinite"): about 46 rpm, the XM430-W350 no-load
-// speed.
-constexpr double kMaxTicksPerSecond = 46.0 / 60.0 * 4096;
 }  // namespace
 
 SimDynamixelBus::SimDynamixelBus(std::vector<std::uint8_t> ids, dxl::ServoModel model)
@@ -47,6 +44,15 @@ std::int32_t SimDynamixelBus::goalTicks(std::uint8_t id) const {
   return servos_.at(id).goal;
 }
 
+void SimDynamixelBus::setLimits(std::uint8_t id, std::int32_t minTicks, std::int32_t maxTicks,
+                                std::int32_t velocityLimit) {
+  std::lock_guard lock(mutex_);
+  Servo& s = servos_.at(id);
+  s.minLimit = minTicks;
+  s.maxLimit = maxTicks;
+  s.velocityLimit = velocityLimit;
+}
+
 bool SimDynamixelBus::torqueOn(std::uint8_t id) const {
   std::lock_guard lock(mutex_);
   return servos_.at(id).torque;
@@ -55,9 +61,9 @@ bool SimDynamixelBus::torqueOn(std::uint8_t id) const {
 void SimDynamixelBus::advance(double seconds) {
   for (auto& [id, s] : servos_) {
     if (!s.torque) continue;
-    const double speed = s.profileVelocity > 0 ? s.profileVelocity * model_.velocityUnitRpm / 60.0 *
-                                                     model_.ticksPerTurn
-                                               : kMaxTicksPerSecond;
+    const std::int32_t units =
+        s.profileVelocity > 0 ? std::min(s.profileVelocity, s.velocityLimit) : s.velocityLimit;
+    const double speed = units * model_.velocityUnitRpm / 60.0 * model_.ticksPerTurn;
     const double step = speed * seconds;
     const double d = s.goal - s.position;
     s.position = std::abs(d) <= step ? s.goal : s.position + (d > 0 ? step : -step);
@@ -73,6 +79,9 @@ std::vector<std::uint8_t> SimDynamixelBus::readTable(const Servo& s, std::uint16
   };
   put(0, kModelNumber, 2);
   table[6] = kFirmware;
+  put(model_.velocityLimitAddress, s.velocityLimit, 4);
+  put(model_.maxPositionLimitAddress, s.maxLimit, 4);
+  put(model_.minPositionLimitAddress, s.minLimit, 4);
   put(model_.torqueEnableAddress, s.torque ? 1 : 0, 1);
   put(model_.profileVelocityAddress, s.profileVelocity, 4);
   put(model_.goalPositionAddress, s.goal, 4);
@@ -89,7 +98,7 @@ void SimDynamixelBus::writeTable(Servo& s, std::uint16_t address,
   if (address == model_.torqueEnableAddress && data.size() >= 1) s.torque = data[0] != 0;
   if (address == model_.profileVelocityAddress && data.size() == 4) s.profileVelocity = v;
   if (address == model_.goalPositionAddress && data.size() == 4)
-    s.goal = std::clamp(v, 0, model_.ticksPerTurn - 1);
+    s.goal = std::clamp(v, s.minLimit, s.maxLimit);
 }
 
 void SimDynamixelBus::reply(std::vector<std::uint8_t> bytes) {

@@ -59,6 +59,20 @@ TEST(DynamixelHeadOnPty, LimitsClampTheTarget) {
   EXPECT_THROW(head->command({std::nan(""), 0, 0}), horopter::Error);
 }
 
+TEST(DynamixelHeadOnPty, ServoLimitsNarrowTheHeadsLimits) {
+  SimDynamixelBus bus({1, 2});
+  bus.setLimits(1, 1800, 2300, 100);  // pan: -0.380 .. +0.387 rad, 100 units = 2.40 rad/s
+  auto head = openHead(bus);
+  const dxl::ServoModel x;
+  EXPECT_DOUBLE_EQ(head->limits().panMin, dxl::ticksToRadians(1800, x));
+  EXPECT_DOUBLE_EQ(head->limits().panMax, dxl::ticksToRadians(2300, x));
+  EXPECT_DOUBLE_EQ(head->limits().tiltMax, 0.8);   // the options' limit is the narrower one
+  EXPECT_DOUBLE_EQ(head->limits().maxSpeed, 1.0);  // 167 and 100 units are faster than 1 rad/s
+  head->command({1.0, 0, 0});
+  ASSERT_TRUE(eventually([&] { return bus.goalTicks(1) != 2048; }));
+  EXPECT_EQ(bus.goalTicks(1), 2300);
+}
+
 TEST(DynamixelHeadOnPty, VergenceServosSplitTheAngle) {
   SimDynamixelBus bus({1, 2, 3, 4});
   DynamixelHeadOptions o;

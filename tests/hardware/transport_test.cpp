@@ -74,6 +74,11 @@ TEST(DynamixelHeadScripted, StartUpUsesTheManualsPackets) {
   ScriptedTransport& s = *script;
   s.expect(hex("FF FF FD 00 01 03 00 01 19 4E"), hex("FF FF FD 00 01 07 00 55 00 06 04 26 65 5D"));
   s.expect(dxl::pingPacket(2), dxl::statusPacket(2, 0, Bytes{0xFC, 0x03, 0x2D}));
+  // Velocity Limit (44), Max/Min Position Limit (48, 52) of pan and tilt: 167, 4095, 0.
+  const Bytes limits =
+      dxl::littleEndian(167, 4) + dxl::littleEndian(4095, 4) + dxl::littleEndian(0, 4);
+  s.expect(dxl::readPacket(1, 44, 12), dxl::statusPacket(1, 0, limits));
+  s.expect(dxl::readPacket(2, 44, 12), dxl::statusPacket(2, 0, limits));
   s.expect(dxl::writePacket(1, 64, Bytes{1}), hex("FF FF FD 00 01 04 00 55 00 A1 0C"));
   s.expect(dxl::writePacket(2, 64, Bytes{1}), dxl::statusPacket(2, 0, {}));
   s.expect(hex("FF FF FD 00 FE 09 00 82 84 00 04 00 01 02 CE FA"),
@@ -98,6 +103,10 @@ TEST(DynamixelHeadScripted, ADeviceErrorIsNamed) {
   auto script = std::make_unique<ScriptedTransport>();
   script->expect(dxl::pingPacket(1), dxl::statusPacket(1, 0, Bytes{0xFC, 0x03, 0x2D}));
   script->expect(dxl::pingPacket(2), dxl::statusPacket(2, 0, Bytes{0xFC, 0x03, 0x2D}));
+  const Bytes limits =
+      dxl::littleEndian(167, 4) + dxl::littleEndian(4095, 4) + dxl::littleEndian(0, 4);
+  script->expect(dxl::readPacket(1, 44, 12), dxl::statusPacket(1, 0, limits));
+  script->expect(dxl::readPacket(2, 44, 12), dxl::statusPacket(2, 0, limits));
   // Torque Enable refused with "data range error" (4) on every retry.
   for (int i = 0; i < 3; ++i)
     script->expect(dxl::writePacket(1, 64, Bytes{1}), dxl::statusPacket(1, 4, {}));

@@ -1,7 +1,9 @@
 // A pan-tilt(-vergence) head of DYNAMIXEL Protocol 2.0 servos on one bus.
 //
 // At start: pings every servo (an absent one is an error naming its ID),
-// enables torque, reads the present positions. Then its own thread, every
+// reads the pan and tilt servos' Velocity Limit and Min/Max Position Limit
+// (the head's limits become the intersection of the options' and the
+// servos'), enables torque, reads the present positions. Then its own thread, every
 // period: when the target changed, a Sync Write of Profile Velocity (if the
 // speed changed) and of Goal Position; always a Sync Read of Present
 // Position, whose replies become the time-stamped measurement. Each exchange
@@ -62,6 +64,7 @@ class DynamixelHead final : public Head {
   void shutdown();
 
  private:
+  void readServoLimits();
   void run();
   void cycle();
   std::vector<dxl::Status> exchange(const std::vector<std::uint8_t>& request,

@@ -107,8 +107,11 @@ std::int32_t fromLittleEndian(std::span<const std::uint8_t> bytes);
 // The control-table facts a driver needs for one servo family.
 struct ServoModel {
   std::string family = "X series (XM430/XL430/XH430)";
-  int ticksPerTurn = 4096;  // position resolution
-  int centreTick = 2048;    // 0 rad
+  int ticksPerTurn = 4096;                     // position resolution
+  int centreTick = 2048;                       // 0 rad
+  std::uint16_t velocityLimitAddress = 44;     // 4 bytes, unit velocityUnitRpm (EEPROM)
+  std::uint16_t maxPositionLimitAddress = 48;  // 4 bytes (EEPROM)
+  std::uint16_t minPositionLimitAddress = 52;  // 4 bytes (EEPROM)
   std::uint16_t torqueEnableAddress = 64;
   std::uint16_t profileVelocityAddress = 112;  // 4 bytes, unit velocityUnitRpm
   std::uint16_t goalPositionAddress = 116;     // 4 bytes

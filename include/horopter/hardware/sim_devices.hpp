@@ -36,6 +36,9 @@ class SimDynamixelBus {
   double positionRad(std::uint8_t id) const;
   std::int32_t goalTicks(std::uint8_t id) const;
   bool torqueOn(std::uint8_t id) const;
+  // EEPROM limits (defaults 0..4095 ticks, Velocity Limit 167 units). Goals are clamped to them.
+  void setLimits(std::uint8_t id, std::int32_t minTicks, std::int32_t maxTicks,
+                 std::int32_t velocityLimit);
   long packetsReceived() const { return packets_; }
   long corruptReceived() const { return corruptIn_; }
 
@@ -43,7 +46,8 @@ class SimDynamixelBus {
   struct Servo {
     double position = 2048;  // ticks, fractional while moving
     std::int32_t goal = 2048;
-    std::int32_t profileVelocity = 0;  // 0: as fast as it goes
+    std::int32_t profileVelocity = 0;  // 0: as fast as the Velocity Limit allows
+    std::int32_t minLimit = 0, maxLimit = 4095, velocityLimit = 167;
     bool torque = false;
   };
   void run();
