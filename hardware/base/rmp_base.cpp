@@ -109,7 +109,8 @@ void RmpBase::completeSeries(Clock::time_point now) {
 
 void RmpBase::receiveAll(Clock::time_point now) {
   CanFrame f;
-  while (transport_->receive(f, std::chrono::milliseconds(0))) {
+  // Bounded: a flooded bus must not keep the cycle from sending its command.
+  for (int n = 0; n < 512 && transport_->receive(f, std::chrono::milliseconds(0)); ++n) {
     std::lock_guard lock(mutex_);
     if (const auto enabled = rmp::decodeMotorStatus(f)) {
       if (health_.motorsEnabled.value_or(true) && !*enabled)
