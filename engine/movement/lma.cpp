@@ -128,6 +128,7 @@ LmaExtractor::LmaExtractor(LmaOptions options) : options_(options) {
 }
 
 void LmaExtractor::reset() {
+  leftMemory_ = rightMemory_ = {};
   raw_.clear();
   history_.clear();
   haveRest_ = false;
@@ -154,14 +155,31 @@ LmaFeatures LmaExtractor::update(const BodySample& sample) {
   LmaFeatures f;
   Entry e;
   e.timeS = sample.timeS;
-  const bool ok = sample.godfather && toRig(sample.head, lastHeadDepth_, e.head) &&
-                  toRig(sample.leftHand, e.head.z, e.left) &&
-                  toRig(sample.rightHand, e.head.z, e.right);
+  const bool ok = sample.godfather && toRig(sample.head, lastHeadDepth_, e.head);
   if (!ok || (!raw_.empty() && !(sample.timeS > raw_.back().timeS))) {
     reset();
     return f;
   }
   lastHeadDepth_ = e.head.z;
+  // A hand without a track, or out of reach of the body (a track on
+  // something else), keeps its last offset from the head for a while, then
+  // hangs at rest: the other hand's features go on.
+  const cv::Point3d sternumNow = e.head + cv::Point3d(0, options_.sternumBelowHeadM, 0);
+  auto placeHand = [&](const PartState& part, double side, HandMemory& memory, cv::Point3d& out) {
+    if (toRig(part, e.head.z, out) && cv::norm(out - sternumNow) < options_.reachM) {
+      memory.offset = out - e.head;
+      memory.seenS = sample.timeS;
+      memory.valid = true;
+      return;
+    }
+    if (memory.valid && sample.timeS - memory.seenS <= options_.holdHandS) {
+      out = e.head + memory.offset;
+      return;
+    }
+    out = sternumNow + cv::Point3d(side * kRestOutM, kRestDownM, 0);
+  };
+  placeHand(sample.leftHand, 1.0, leftMemory_, e.left);
+  placeHand(sample.rightHand, -1.0, rightMemory_, e.right);
   raw_.push_back(e);
   if (static_cast<int>(raw_.size()) > options_.smoothFrames) raw_.pop_front();
 

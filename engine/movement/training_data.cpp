@@ -47,6 +47,7 @@ LabelledSequence syntheticSequence(std::uint64_t seed, const SequenceOptions& o)
   seq.seed = seed;
   const int frames = static_cast<int>(seconds * o.framesPerSecond);
   BodySample previous;
+  int lostFrames[2] = {0, 0};  // frames left without a track, per hand
   for (int i = 0; i < frames; ++i) {
     const double t = i / o.framesPerSecond;
     const synth::PersonPose pose = synth::poseAt(person, t);
@@ -74,6 +75,14 @@ LabelledSequence syntheticSequence(std::uint64_t seed, const SequenceOptions& o)
     part(pose.head, 0.5, s.head, previous.head);
     part(pose.hand[0], 1.0, s.leftHand, previous.leftHand);
     part(pose.hand[1], 1.0, s.rightHand, previous.rightHand);
+    for (int k = 0; k < 2; ++k) {
+      if (lostFrames[k] == 0 && rng.uniform(0, 1) < o.handLossRate)
+        lostFrames[k] = 3 + static_cast<int>(rng.uniform(0, 18));
+      if (lostFrames[k] > 0) {
+        --lostFrames[k];
+        (k ? s.rightHand : s.leftHand) = PartState{};
+      }
+    }
     seq.samples.push_back(s);
     seq.labels.push_back(static_cast<MovementClass>(static_cast<int>(pose.movement)));
     previous = s;

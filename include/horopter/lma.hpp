@@ -50,6 +50,8 @@ struct LmaOptions {
   double freeJerkMps3 = 120.0;   // Effort Flow: above: free
   double directStraightness = 0.8;  // Effort Space: net / path length above: direct
   double sternumBelowHeadM = 0.3;   // the sternum, below the head centre
+  double reachM = 1.0;     // a hand further than this from the sternum is not the godfather's
+  double holdHandS = 0.5;  // an untracked hand keeps its last place this long, then rests
 };
 
 // One part's kinematics this frame.
@@ -116,8 +118,9 @@ struct LmaFeatures {
 int angleSector(double angleRad);
 
 // Online: one update per frame, in order. A frame without a godfather (or
-// without the head and both hands tracked) gives invalid features and
-// starts the history again.
+// without the head tracked) gives invalid features and starts the history
+// again. A hand without a track keeps its last place for holdHandS, then
+// hangs at rest.
 class LmaExtractor {
  public:
   explicit LmaExtractor(LmaOptions options = {});
@@ -134,11 +137,17 @@ class LmaExtractor {
     double timeS = 0;
     cv::Point3d head, left, right;  // smoothed; hands relative to the sternum
   };
+  struct HandMemory {
+    bool valid = false;
+    double seenS = 0;
+    cv::Point3d offset;  // from the head
+  };
   bool toRig(const PartState& part, double depthHint, cv::Point3d& out) const;
 
   LmaOptions options_;
   std::deque<Entry> raw_;
   std::deque<Smoothed> history_;
+  HandMemory leftMemory_, rightMemory_;
   double lastHeadDepth_ = 0;
   bool haveRest_ = false;
   double restIncentreY_ = 0;  // incentre relative to the head at the last rest

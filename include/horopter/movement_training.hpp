@@ -40,6 +40,9 @@ struct SequenceOptions {
   double lateralNoiseM = 0.01, depthNoiseM = 0.025;
   double missingDepthRate = 0.05;
   double coastRate = 0.03;  // a part keeps last frame's position
+  // A hand's track is lost (tracked = false) from a frame with this
+  // probability, for 3 to 20 frames.
+  double handLossRate = 0.01;
 };
 
 struct LabelledSequence {

@@ -177,6 +177,49 @@ TEST(Lma, NoGodfatherGivesInvalidFeaturesAndStartsAgain) {
   EXPECT_FALSE(lma.update(body(16, still, still)).valid);
 }
 
+TEST(Lma, AnUntrackedHandKeepsItsPlaceThenRestsAndTheOtherHandGoesOn) {
+  LmaOptions o;
+  o.smoothFrames = 1;
+  o.holdHandS = 0.3;
+  LmaExtractor lma(o);
+  auto raised = [](int) { return cv::Point3f(0, -0.4f, -0.2f); };  // left hand up and forward
+  auto moving = [](int k) { return cv::Point3f(0, static_cast<float>(-0.02 * k), 0); };
+  LmaFeatures f;
+  for (int i = 0; i < 10; ++i)
+    f = lma.update(body(i, raised, moving));
+  ASSERT_TRUE(f.valid);
+  const cv::Point3f held = f.leftHand.position;
+  for (int i = 10; i < 40; ++i) {
+    BodySample s = body(i, raised, moving);
+    s.leftHand = PartState{};  // lost
+    f = lma.update(s);
+    ASSERT_TRUE(f.valid) << i;
+    EXPECT_NEAR(f.rightHand.speed, 0.6, 1e-3) << i;
+    if (i < 18) {
+      EXPECT_NEAR(f.leftHand.position.y, held.y, 1e-5) << i;  // held
+    }
+  }
+  // After holdHandS the lost hand hangs at rest, below the sternum.
+  EXPECT_GT(f.leftHand.position.y, 0.3f);
+  EXPECT_FALSE(f.leftHand.moving);
+}
+
+TEST(Lma, AHandOutOfReachIsNotTheGodfathers) {
+  LmaOptions o;
+  o.smoothFrames = 1;
+  LmaExtractor lma(o);
+  LmaFeatures f;
+  for (int i = 0; i < 12; ++i) {
+    BodySample s = body(i, still, still);
+    if (i >= 8) s.rightHand.rig = s.head.rig + cv::Point3f(-1.5f, 0.2f, 0);  // clutter far away
+    f = lma.update(s);
+  }
+  ASSERT_TRUE(f.valid);
+  EXPECT_FALSE(f.rightHand.moving);
+  EXPECT_LT(f.rightHand.position.x, -0.2f);
+  EXPECT_GT(f.rightHand.position.x, -0.3f);
+}
+
 TEST(Lma, TimeGoingBackwardsStartsTheHistoryAgain) {
   LmaExtractor lma;
   for (int i = 0; i < 15; ++i)
