@@ -43,6 +43,7 @@ namespace horopter {
 struct Detections;     // horopter/detection.hpp: faces, hands, triangles in this frame
 struct TrackingState;  // horopter/tracking.hpp: godfather election, tracks, head command
 struct MovementState;  // horopter/movement.hpp: LMA features, posterior, decision, action
+struct RobotState;     // horopter/robot_stage.hpp: what the robot was told and measured
 
 using SteadyClock = std::chrono::steady_clock;
 
@@ -67,6 +68,7 @@ struct Frame {
   std::shared_ptr<const TrackingState> tracking;
   BodySample body;  // the godfather's head and hands (filled by tracking)
   std::shared_ptr<const MovementState> movement;
+  std::shared_ptr<const RobotState> robot;
   std::vector<StageSpan> spans;  // filled by the scheduler
 };
 
