@@ -7,9 +7,14 @@
 #include <iostream>
 #include <sstream>
 
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "commands.hpp"
 #include "horopter/error.hpp"
 #include "horopter/tracking_eval.hpp"
+#include "run_annotation.hpp"
 
 namespace horopter::cli {
 
@@ -46,6 +51,8 @@ const char* kEvalTrackingHelp =
     "  --no-head-control  the head stays still (open loop)\n"
     "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
     "                     below the full image's (for tests)\n"
+    "  --stills DIR       write every 10th frame of each run, annotated (run's view, with the\n"
+    "                     truth's head and hands as white crosses) to DIR\n"
     "  --json             print the results as one JSON object\n"
     "  -v, --verbose      one line per trial on stderr\n";
 
@@ -98,6 +105,7 @@ int runEvalTracking(Args& args) {
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");
   const bool verbose = args.flag("--verbose") || args.flag("-v");
+  const std::string stills = args.stringValue("--stills", "");
   args.finish("eval-tracking");
   if (trials < 1) throw Error("--trials must be >= 1");
   if (seed < 0) throw Error("--seed must be >= 0");
@@ -122,7 +130,24 @@ int runEvalTracking(Args& args) {
       if (tty)
         std::fprintf(stderr, "\rtrial %d/%d (seed %llu), %s...        ", i + 1, trials,
                      static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]));
-      const TrialResult r = runTrackingTrial(o, scopes[k]);
+      TrialFrameCallback dump;
+      if (!stills.empty()) {
+        std::filesystem::create_directories(stills);
+        dump = [&, scope = scopes[k], trialSeed = o.seed](const TrialFrame& t) {
+          if (t.frame.index % 10 != 0) return;
+          cv::Mat view = annotateFrame(t.frame, o.stereo, 0);
+          for (const synth::PersonTruth& p : t.truth.people)
+            for (cv::Point2f q : {p.head2d, p.leftHand2d, p.rightHand2d})
+              cv::drawMarker(view, q, cv::Scalar(255, 255, 255), cv::MARKER_CROSS, 14, 2);
+          cv::putText(view, t.lost ? "LOST" : (t.truthGodfather ? "ok" : "-"), cv::Point(8, 80),
+                      cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 255), 2);
+          const std::string path = stills + "/seed" + std::to_string(trialSeed) + "_" +
+                                   (scope == DetectionScope::HoropterRegion ? "region" : "full") +
+                                   "_" + std::to_string(t.frame.index) + ".png";
+          if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
+        };
+      }
+      const TrialResult r = runTrackingTrial(o, scopes[k], {}, dump);
       scores[k].add(r);
       if (verbose)
         std::fprintf(

@@ -19,7 +19,7 @@ const char* detectionScopeName(DetectionScope scope) {
 struct Detector::Impl {
   cv::CascadeClassifier cascade;
   cv::Mat grey, skin, grown, labels, stats, centroids;
-  cv::Mat openKernel, closeKernel, maskCloseKernel, growKernel;
+  cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
 };
 
 namespace {
@@ -50,7 +50,8 @@ Detector::Detector(DetectorOptions options)
   if (o.minFacePx != 0 && o.minFacePx < 20)
     throw Error(
         "the smallest face must be >= 20 px (the cascade's window), or 0 for a 16th of the width");
-  if (o.maskGrowPx < 0 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 || o.minHandAreaPx < 1)
+  if (o.maskErodePx < -1 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 ||
+      o.minHandAreaPx < 1)
     throw Error("mask growth, opening and closing must be >= 0 px and the hand area >= 1 px");
   if (!std::filesystem::exists(o.faceCascade))
     throw Error(
@@ -60,7 +61,6 @@ Detector::Detector(DetectorOptions options)
     throw Error("cannot load the face cascade '" + o.faceCascade + "'");
   if (o.openPx > 0) impl_->openKernel = ellipse(o.openPx);
   if (o.closePx > 0) impl_->closeKernel = ellipse(o.closePx);
-  if (o.maskGrowPx > 0) impl_->growKernel = ellipse(2 * o.maskGrowPx + 1);
   if (o.maskClosePx > 0) impl_->maskCloseKernel = ellipse(o.maskClosePx);
 }
 
@@ -83,17 +83,21 @@ Detections Detector::detect(const Frame& frame) {
 
   Detections d;
   d.scope = o.scope;
-  // Where to look, and the grown mask over it.
+  // Where to look, and the eroded mask over it.
   cv::Rect roi = image;
   if (region) {
     roi = cv::boundingRect(frame.mask);
     if (roi.empty()) return d;
-    const int g = o.maskGrowPx + o.maskClosePx;
+    const int g = o.maskClosePx;
     roi = cv::Rect(roi.x - g, roi.y - g, roi.width + 2 * g, roi.height + 2 * g) & image;
     m.grown = frame.mask(roi).clone();
     if (!m.maskCloseKernel.empty())
       cv::morphologyEx(m.grown, m.grown, cv::MORPH_CLOSE, m.maskCloseKernel);
-    if (!m.growKernel.empty()) cv::dilate(m.grown, m.grown, m.growKernel);
+    const int erodePx = o.maskErodePx >= 0 ? o.maskErodePx : std::max(1, frame.left.cols / 160);
+    if (erodePx > 0) {
+      if (m.erodeKernel.rows != 2 * erodePx + 1) m.erodeKernel = ellipse(2 * erodePx + 1);
+      cv::erode(m.grown, m.grown, m.erodeKernel);
+    }
   }
   d.searched = roi;
   d.searchedPixels = roi.area();

@@ -184,6 +184,9 @@ class HeadControlStage : public Stage {
     } else {
       return std::nullopt;
     }
+    // Hold the face above the centre: look down by the angle of that offset.
+    if (o_.imageHeight > 0 && o_.focalPx > 0)
+      target.tilt += std::atan((0.5 - o_.faceRowFraction) * o_.imageHeight / o_.focalPx);
     const hw::HeadAngles c = limitCommand(*pose, target, o_);
     if (c.pan == pose->pan && c.tilt == pose->tilt) return std::nullopt;  // inside the dead band
     return c;
@@ -208,6 +211,7 @@ std::unique_ptr<Stage> makeSyntheticHeadControlStage(HeadControlOptions options,
   options.focalPx = source.scene().focalPx();
   options.cx = source.scene().cx();
   options.cy = source.scene().cy();
+  options.imageHeight = source.scene().options().height;
   options.framesPerSecond = source.scene().options().framesPerSecond;
   std::shared_ptr<SyntheticRigHead> head = source.head();
   CapturePose pose = [](const Frame& f) -> std::optional<hw::HeadAngles> {

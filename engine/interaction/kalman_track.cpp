@@ -64,4 +64,9 @@ void ConstantVelocityTrack::update(cv::Point2f z) {
   lastUpdate_ = time_;
 }
 
+void ConstantVelocityTrack::dampVelocity(double factor) {
+  x_(2) *= factor;
+  x_(3) *= factor;
+}
+
 }  // namespace horopter

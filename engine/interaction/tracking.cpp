@@ -39,6 +39,7 @@ struct BodyTracker::Impl {
   explicit Impl(const TrackerOptions& o) : election(o.election) {}
   GodfatherElection election;
   std::optional<ConstantVelocityTrack> head, hands[2];  // hands: [0] left, [1] right (the person's)
+  cv::Point2f lastSeen[2];                              // where each hand was last observed
   float faceWidth = 0;
   bool haveStart = false;
   SteadyClock::time_point start{};
@@ -47,7 +48,8 @@ struct BodyTracker::Impl {
 namespace {
 
 void validate(const TrackerOptions& o) {
-  if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > 0))
+  if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > o.minHandAreaFaces) ||
+      o.minHandAreaFaces < 0)
     throw Error("tracker coast time must be >= 0 s, reach and hand area > 0");
   if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
     throw Error("tracker framesPerSecond must be positive");
@@ -108,6 +110,8 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       m.head->update(best->centre);
       m.faceWidth = best->width;
       seenInside = best->insideZone;
+    } else {
+      m.head->dampVelocity(o.coastVelocityDamping);
     }
   } else {
     const FaceDetection* best = nullptr;
@@ -135,7 +139,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     std::vector<const HandDetection*> candidates;
     for (const HandDetection& c : det.hands)
       if (cv::norm(c.centroid - h) <= o.reachFaceWidths * fw &&
-          c.areaPx <= o.maxHandAreaFaces * fw * fw)
+          c.areaPx <= o.maxHandAreaFaces * fw * fw && c.areaPx >= o.minHandAreaFaces * fw * fw)
         candidates.push_back(&c);
     std::vector<bool> taken(candidates.size(), false);
     struct Pair {
@@ -147,7 +151,9 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     for (int k = 0; k < 2; ++k)
       if (m.hands[k])
         for (std::size_t j = 0; j < candidates.size(); ++j)
-          if (m.hands[k]->inGate(candidates[j]->centroid))
+          if (m.hands[k]->inGate(candidates[j]->centroid) &&
+              cv::norm(candidates[j]->centroid - m.hands[k]->position()) <=
+                  o.maxHandStepFaceWidths * fw)
             pairs.push_back({m.hands[k]->distance2(candidates[j]->centroid), k, j});
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
       return std::tie(a.d2, a.track, a.candidate) < std::tie(b.d2, b.track, b.candidate);
@@ -156,9 +162,28 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     for (const Pair& p : pairs) {
       if (updated[p.track] || taken[p.candidate]) continue;
       m.hands[p.track]->update(candidates[p.candidate]->centroid);
+      m.lastSeen[p.track] = candidates[p.candidate]->centroid;
       updated[p.track] = taken[p.candidate] = true;
     }
+    // A hand that left its gate (hands start and stop faster than any
+    // constant-velocity model expects) is taken up again at the free
+    // candidate nearest where it was last seen, within reacquireFaceWidths.
     for (int k = 0; k < 2; ++k) {
+      if (!m.hands[k] || updated[k]) continue;
+      std::size_t best = candidates.size();
+      double bestD = o.reacquireFaceWidths * fw;
+      for (std::size_t j = 0; j < candidates.size(); ++j) {
+        const double d = cv::norm(candidates[j]->centroid - m.lastSeen[k]);
+        if (!taken[j] && d <= bestD) best = j, bestD = d;
+      }
+      if (best < candidates.size()) {
+        m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
+        m.lastSeen[k] = candidates[best]->centroid;
+        updated[k] = taken[best] = true;
+      }
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (m.hands[k] && !updated[k]) m.hands[k]->dampVelocity(o.coastVelocityDamping);
       if (m.hands[k] && !updated[k] && t - m.hands[k]->lastUpdateS() > o.coastS) m.hands[k].reset();
       if (m.hands[k]) continue;
       // The person's left hand appears on the image's right.
@@ -174,6 +199,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       }
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
+        m.lastSeen[k] = candidates[best]->centroid;
         taken[best] = true;
       }
     }

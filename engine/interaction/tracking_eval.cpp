@@ -95,13 +95,15 @@ void ScopeScore::add(const TrialResult& t) {
 
 namespace {
 
-// A hand is visible when it projects inside the image and nothing nearer
-// hides its centre (the truth's surface there is not in front of the hand's
-// front by more than a few centimetres).
+// A hand is visible when it lies in view (its centre at least its radius,
+// about 0.3 face widths, inside the image) and nothing nearer hides its
+// centre (the truth's surface there is not in front of the hand's front by
+// more than a few centimetres).
 bool handVisible(const synth::FrameTruth& truth, cv::Point2f p2, const cv::Point3f& p3,
-                 double focalPx, double baselineM) {
-  const int x = cvRound(p2.x), y = cvRound(p2.y);
-  if (!(p3.z > 0) || x < 0 || y < 0 || x >= truth.disparity.cols || y >= truth.disparity.rows)
+                 double focalPx, double baselineM, float faceWidthPx) {
+  const int x = cvRound(p2.x), y = cvRound(p2.y), r = cvRound(0.3f * faceWidthPx);
+  if (!(p3.z > 0) || x < r || y < r || x >= truth.disparity.cols - r ||
+      y >= truth.disparity.rows - r)
     return false;
   const double d = truth.disparity.at<std::int16_t>(y, x) / 16.0;
   if (!(d > 0)) return false;
@@ -143,10 +145,11 @@ class Scorer {
       }
     };
     part(main.visible, b.head, main.head2d, r_.head);
-    part(handVisible(truth, main.leftHand2d, main.leftHand3d, focal_, baseline_), b.leftHand,
-         main.leftHand2d, r_.leftHand);
-    part(handVisible(truth, main.rightHand2d, main.rightHand3d, focal_, baseline_), b.rightHand,
-         main.rightHand2d, r_.rightHand);
+    part(handVisible(truth, main.leftHand2d, main.leftHand3d, focal_, baseline_, main.faceWidthPx),
+         b.leftHand, main.leftHand2d, r_.leftHand);
+    part(
+        handVisible(truth, main.rightHand2d, main.rightHand3d, focal_, baseline_, main.faceWidthPx),
+        b.rightHand, main.rightHand2d, r_.rightHand);
     if (lost) ++r_.lostFrames;
     return lost;
   }

@@ -38,18 +38,19 @@ struct DetectorOptions {
   // smallest face would fall under 20 px: a 40 px face is 30 px at 0.75,
   // for far fewer windows.
   double faceScale = 0.75;
-  // Region: the mask is closed with a disc this wide (fills the disparity
-  // holes on the hands), then dilated by maskGrowPx (keeps the silhouette's
-  // edge; more would let the background behind it in); >= 0.
-  int maskClosePx = 15;
-  int maskGrowPx = 2;
+  // Region: the mask is closed with a disc this wide (0: not), then eroded
+  // by maskErodePx: block matching fattens the foreground by about half its
+  // block, so a rim of the background behind the silhouette (skin-coloured
+  // wood, say) gets the person's disparity; the erosion takes it out.
+  int maskClosePx = 11;
+  int maskErodePx = -1;  // -1: a 160th of the width (4 px at 640, StereoBM's block 9)
   SkinModel skin;
-  int openPx = 5;           // morphological opening of the skin mask (removes speckle, thin strips)
-  int closePx = 5;          // closing (joins a hand's pieces)
-  int minHandAreaPx = 120;  // smallest skin component kept as a hand candidate
+  int openPx = 5;          // morphological opening of the skin mask (removes speckle, thin strips)
+  int closePx = 7;         // closing (joins a hand's pieces)
+  int minHandAreaPx = 40;  // smallest skin component kept as a hand candidate
   // The face rectangle grown by this fraction of its width, and down by
   // neckFraction of its height, is not a hand (face and neck skin).
-  double faceMargin = 0.15;
+  double faceMargin = 0.3;
   double neckFraction = 0.8;
 };
 
@@ -64,7 +65,7 @@ struct HandDetection {
   cv::Point2f centroid;
   cv::Rect box;
   int areaPx = 0;
-  bool insideZone = false;  // the centroid lies in the (grown) mask
+  bool insideZone = false;  // the centroid lies in the (eroded) mask
 };
 
 // The body triangle of one person. Left and right are the person's own.

@@ -39,6 +39,10 @@ struct HeadControlOptions {
   double deadbandRad = 0.035;   // errors below this (about 2 degrees) are left alone
   double maxRateRadPerS = 1.0;  // each axis
   hw::HeadLimits limits{-1.2, 1.2, -0.6, 0.6, false, 0, 0, 1.0};
+  // Where the face is held vertically, as a fraction of the image height from
+  // the top (0.5: centred). Above the centre keeps the hands in view.
+  double faceRowFraction = 0.35;
+  int imageHeight = 0;                 // pixels (0: the face is centred)
   double framesPerSecond = 30;         // the time between commands, for the rate limit
   int actuationDelayFrames = 3;        // >= 1: a command from frame N acts at frame N + delay
   double focalPx = 0, cx = 0, cy = 0;  // the rectified left camera (Paper; Atan2 fallback)

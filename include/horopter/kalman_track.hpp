@@ -26,6 +26,9 @@ class ConstantVelocityTrack {
   double distance2(cv::Point2f z) const;
   bool inGate(cv::Point2f z) const;
   void update(cv::Point2f z);
+  // Scales the velocity (a track without detections slows down instead of
+  // flying off along its last velocity).
+  void dampVelocity(double factor);
 
   cv::Point2f position() const { return {static_cast<float>(x_(0)), static_cast<float>(x_(1))}; }
   cv::Point2f velocity() const { return {static_cast<float>(x_(2)), static_cast<float>(x_(3))}; }

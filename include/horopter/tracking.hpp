@@ -19,12 +19,25 @@ namespace horopter {
 struct TrackerOptions {
   ElectionOptions election;
   KalmanOptions head{800, 3, 200, 13.8, 12};
-  KalmanOptions hands{2500, 4, 400, 13.8, 15};
+  // Hands start and stop within a frame or two (a wave's turn): a large
+  // acceleration noise keeps them in the gate.
+  KalmanOptions hands{30000, 4, 600, 13.8, 15};
+  // A hand that left its gate is taken up again at the free candidate within
+  // this many face widths of where it was last seen.
+  double reacquireFaceWidths = 1.5;
+  // However wide the Kalman gate grows, a detection further than this many
+  // face widths from a hand's prediction is not that hand.
+  double maxHandStepFaceWidths = 2.0;
+  // A coasting track's velocity is multiplied by this each frame without a
+  // detection.
+  double coastVelocityDamping = 0.5;
   double coastS = 0.4;  // a track without detections is dropped after this long
   // A hand candidate must lie within this many face widths of the head, and
-  // its area be at most this many face areas (larger: merged with clutter).
+  // its area be between these many squared face widths (a hand is about
+  // 0.27; larger: merged with clutter, smaller: a speck or a hand's edge).
   double reachFaceWidths = 7;
-  double maxHandAreaFaces = 1.5;
+  double minHandAreaFaces = 0.05;
+  double maxHandAreaFaces = 1.0;
   // The frame's time: index / framesPerSecond (deterministic, for recorded
   // and synthetic input) or, with captureTime, the capture timestamps.
   double framesPerSecond = 30;
