@@ -5,6 +5,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "horopter/backend.hpp"
@@ -59,16 +60,23 @@ void requireNonNull(const T* p, const char* what) {
   if (!p) throw InvalidArgument(std::string(what) + " is NULL");
 }
 
-horopter::PixelType pixelType(horopter_pixel_type t) {
-  switch (t) {
+// The C caller may store any int in the enum field: read its bytes as an
+// int (loading an out-of-range value as the C++ enum is undefined behaviour).
+horopter::PixelType pixelType(const horopter_pixel_type& field) {
+  std::underlying_type_t<horopter_pixel_type> raw;
+  static_assert(sizeof raw == sizeof field);
+  std::memcpy(&raw, &field, sizeof raw);
+  switch (raw) {
     case HOROPTER_U8C1:
       return horopter::PixelType::U8C1;
     case HOROPTER_U8C3:
       return horopter::PixelType::U8C3;
     case HOROPTER_S16C1:
       return horopter::PixelType::S16C1;
+    default:
+      break;
   }
-  throw InvalidArgument("unknown pixel type " + std::to_string(static_cast<int>(t)) +
+  throw InvalidArgument("unknown pixel type " + std::to_string(raw) +
                         ": use HOROPTER_U8C1, HOROPTER_U8C3 or HOROPTER_S16C1");
 }
 
