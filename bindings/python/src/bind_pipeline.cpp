@@ -16,7 +16,11 @@
 #include "bindings.hpp"
 #include "frame_dicts.hpp"
 #include "horopter/capture.hpp"
+#include "horopter/detection.hpp"
 #include "horopter/error.hpp"
+#include "horopter/movement.hpp"
+#include "horopter/movement_classifier.hpp"
+#include "horopter/tracking.hpp"
 #include "horopter/vision_stages.hpp"
 #include "pipeline_zone.hpp"
 #include "stereo_args.hpp"
@@ -36,6 +40,8 @@ struct RunConfig {
   int inFlight = 3;
   bool live = false;
   ZoneOptions zone;
+  std::string detect;                             // "", "region" or "full"
+  std::shared_ptr<const MovementModel> movement;  // needs detect
 };
 
 class PipelineRun {
@@ -55,6 +61,18 @@ class PipelineRun {
     pipeline_->add(makeRectifyStage(zone.rectify));
     pipeline_->add(makeDisparityStage(config.stereo, config.median, backend, config.threads));
     pipeline_->add(makeMaskStage(zone.thresholds, config.stereo, backend));
+    if (!config.detect.empty()) {  // as `horopter run` (without its head control)
+      DetectorOptions detector;
+      detector.scope =
+          config.detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
+      pipeline_->add(makeDetectionStage(detector));
+      TrackerOptions tracker;
+      tracker.rig = zone.rig;
+      tracker.framesPerSecond = zone.framesPerSecond;
+      tracker.captureTime = config.live;
+      pipeline_->add(makeTrackingStage(tracker));
+      if (config.movement) pipeline_->add(makeMovementStage(config.movement));
+    }
     sourceName_ = source_->name();
     thread_ = std::thread([this] { runPipeline(); });
   }
@@ -149,47 +167,64 @@ void bindPipeline(py::module_& m) {
   py::class_<PipelineRun>(m, "Pipeline",
                           "Runs a source through rectify -> disparity -> mask with several "
                           "frames in flight; iterate it for one dict per finished frame")
-      .def(py::init([](const std::string& source, std::optional<std::int64_t> frames,
-                       const py::object& params, const py::object& median,
-                       const std::string& backend, int threads, int inFlight, bool live,
-                       std::optional<std::pair<int, int>> size, std::uint64_t seed,
-                       const std::string& calib, double fixation,
-                       std::optional<double> fixationDisparity, std::optional<double> focalPx,
-                       const py::kwargs& kwargs) {
-             RunConfig c;
-             c.source = source;
-             if (frames) {
-               if (*frames < 1) throw py::value_error("frames must be >= 1");
-               c.maxFrames = *frames;
-               c.capture.frames = static_cast<int>(*frames);
-             }
-             c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
-             applyStereoKwargs(c.stereo, kwargs);
-             c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
-             c.backend = backend;
-             c.threads = threads;
-             c.inFlight = inFlight;
-             c.live = live;
-             if (size) {
-               c.capture.width = c.capture.scene.width = size->first;
-               c.capture.height = c.capture.scene.height = size->second;
-             }
-             c.capture.scene.seed = seed;
-             c.zone.calib = calib;
-             c.zone.fixation = fixation;
-             c.zone.fixationDisparity = fixationDisparity;
-             c.zone.focalPx = focalPx;
-             return std::make_unique<PipelineRun>(c);
-           }),
+      .def(py::init(
+               [](const std::string& source, std::optional<std::int64_t> frames,
+                  const py::object& params, const py::object& median, const std::string& backend,
+                  int threads, int inFlight, bool live, std::optional<std::pair<int, int>> size,
+                  std::uint64_t seed, const std::string& calib, double fixation,
+                  std::optional<double> fixationDisparity, std::optional<double> focalPx,
+                  const std::optional<std::string>& detect,
+                  const std::shared_ptr<MovementModel>& movementModel, const py::kwargs& kwargs) {
+                 RunConfig c;
+                 c.source = source;
+                 if (frames) {
+                   if (*frames < 1) throw py::value_error("frames must be >= 1");
+                   c.maxFrames = *frames;
+                   c.capture.frames = static_cast<int>(*frames);
+                 }
+                 c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
+                 applyStereoKwargs(c.stereo, kwargs);
+                 c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
+                 c.backend = backend;
+                 c.threads = threads;
+                 c.inFlight = inFlight;
+                 c.live = live;
+                 if (size) {
+                   c.capture.width = c.capture.scene.width = size->first;
+                   c.capture.height = c.capture.scene.height = size->second;
+                 }
+                 c.capture.scene.seed = seed;
+                 c.zone.calib = calib;
+                 c.zone.fixation = fixation;
+                 c.zone.fixationDisparity = fixationDisparity;
+                 c.zone.focalPx = focalPx;
+                 if (detect) {
+                   if (*detect != "region" && *detect != "full")
+                     throw py::value_error("detect takes 'region', 'full' or None, got '" +
+                                           *detect + "'");
+                   c.detect = *detect;
+                 }
+                 if (movementModel && !detect)
+                   throw py::value_error(
+                       "movement_model needs detect='region' or 'full' (movement analysis follows "
+                       "the tracked body)");
+                 c.movement = movementModel;
+                 return std::make_unique<PipelineRun>(c);
+               }),
            py::arg("source") = "synthetic", py::arg("frames") = py::none(),
            py::arg("params") = py::none(), py::arg("median") = py::none(),
            py::arg("backend") = "auto", py::arg("threads") = 1, py::arg("in_flight") = 3,
            py::arg("live") = false, py::arg("size") = py::none(), py::arg("seed") = 1,
            py::arg("calib") = "", py::arg("fixation") = 1.5,
            py::arg("fixation_disparity") = py::none(), py::arg("focal_px") = py::none(),
+           py::arg("detect") = py::none(), py::arg("movement_model") = py::none(),
            "Pipeline(source='synthetic', frames=None, params=None, median=None, "
            "backend='auto', threads=1, in_flight=3, live=False, size=None, seed=1, calib='', "
-           "fixation=1.5, fixation_disparity=None, focal_px=None, **stereo_kwargs). Sources: "
+           "fixation=1.5, fixation_disparity=None, focal_px=None, detect=None, "
+           "movement_model=None, **stereo_kwargs). detect='region' or 'full' adds face and "
+           "hand detection and tracking (frame['detections'], ['tracking'], ['body']); "
+           "movement_model (a MovementModel) then adds movement analysis (frame['movement']). "
+           "Sources: "
            "synthetic, dir:PATH, video:LEFT,RIGHT, camera:DEV,DEV, sbs:DEV (as horopter run)")
       .def("__iter__", [](py::object self) { return self; })
       .def("__next__", &PipelineRun::next)

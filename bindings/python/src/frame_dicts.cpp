@@ -3,6 +3,9 @@
 #include <pybind11/stl.h>
 
 #include "arrays.hpp"
+#include "horopter/detection.hpp"
+#include "horopter/godfather.hpp"
+#include "horopter/tracking.hpp"
 
 namespace horopter::python {
 
@@ -37,6 +40,73 @@ py::dict personDict(const synth::PersonTruth& p) {
   d["right_hand_3d"] = point(p.rightHand3d);
   d["face_width_px"] = p.faceWidthPx;
   d["movement"] = synth::movementName(p.movement);
+  return d;
+}
+
+py::tuple box(const cv::Rect& r) {
+  return py::make_tuple(r.x, r.y, r.width, r.height);
+}
+
+py::dict triangleDict(const BodyTriangle& t) {
+  py::dict d;
+  d["head"] = point(t.head);
+  d["left_hand"] = point(t.leftHand);
+  d["right_hand"] = point(t.rightHand);
+  d["incentre"] = point(t.incentre);
+  d["perimeter"] = t.perimeter;
+  d["head_angle_rad"] = t.headAngleRad;
+  d["degenerate"] = t.degenerate;
+  return d;
+}
+
+py::dict detectionsDict(const Detections& det) {
+  py::list faces, hands;
+  for (const FaceDetection& f : det.faces) {
+    py::dict d;
+    d["box"] = box(f.box);
+    d["centre"] = point(f.centre);
+    d["width"] = f.width;
+    d["inside_zone"] = f.insideZone;
+    faces.append(d);
+  }
+  for (const HandDetection& h : det.hands) {
+    py::dict d;
+    d["centroid"] = point(h.centroid);
+    d["box"] = box(h.box);
+    d["area_px"] = h.areaPx;
+    d["inside_zone"] = h.insideZone;
+    hands.append(d);
+  }
+  py::dict d;
+  d["scope"] = detectionScopeName(det.scope);
+  d["faces"] = faces;
+  d["hands"] = hands;
+  d["triangle"] = det.triangle ? py::object(triangleDict(*det.triangle)) : py::none();
+  d["searched"] = box(det.searched);
+  d["searched_pixels"] = det.searchedPixels;
+  return d;
+}
+
+py::dict trackingDict(const TrackingState& t) {
+  py::dict d;
+  d["time_s"] = t.timeS;
+  d["election"] = electionStateName(t.election);
+  d["candidate_s"] = t.candidateS;
+  d["face_width_px"] = t.faceWidthPx;
+  d["head"] = partDict(t.head);
+  d["left_hand"] = partDict(t.leftHand);
+  d["right_hand"] = partDict(t.rightHand);
+  d["triangle"] = t.triangle ? py::object(triangleDict(*t.triangle)) : py::none();
+  if (t.headCommand) {
+    py::dict c;
+    c["pan"] = t.headCommand->pan;
+    c["tilt"] = t.headCommand->tilt;
+    c["vergence"] = t.headCommand->vergence;
+    c["frame"] = t.headCommandFrame;
+    d["head_command"] = c;
+  } else {
+    d["head_command"] = py::none();
+  }
   return d;
 }
 
@@ -127,13 +197,8 @@ py::dict frameDict(const Frame& frame) {
   const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth);
   d["truth"] = truth ? py::object(truthDict(*truth)) : py::none();
   d["movement"] = frame.movement ? py::object(movementDict(*frame.movement)) : py::none();
-  // ---- Detection and tracking (issue 7) -------------------------------------
-  // Frame::detections and ::tracking are filled by stages whose headers
-  // (horopter/detection.hpp, tracking.hpp) have not landed yet: when they do,
-  // turn each into a plain dict here (faces, hands, tracks with ids, the
-  // godfather, the head command).
-  d["detections"] = py::none();
-  d["tracking"] = py::none();
+  d["detections"] = frame.detections ? py::object(detectionsDict(*frame.detections)) : py::none();
+  d["tracking"] = frame.tracking ? py::object(trackingDict(*frame.tracking)) : py::none();
   return d;
 }
 

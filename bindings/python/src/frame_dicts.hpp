@@ -21,8 +21,8 @@ BodySample bodyFromDict(py::handle dict);
 py::dict movementDict(const MovementState& state);
 py::dict truthDict(const synth::FrameTruth& truth);
 // index, time_s, left, right, left_grey, right_grey, disparity, thresholds,
-// mask, body, truth (synthetic sources), movement (a dict when a movement
-// stage ran), and detections / tracking (None until those headers land).
+// mask, body, truth (synthetic sources), and detections, tracking and
+// movement (dicts when those stages ran, else None).
 py::dict frameDict(const Frame& frame);
 
 }  // namespace horopter::python

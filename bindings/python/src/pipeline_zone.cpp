@@ -8,6 +8,7 @@
 #include "horopter/capture.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
+#include "horopter/tracking_eval.hpp"
 
 namespace horopter::python {
 
@@ -23,28 +24,13 @@ ZoneSetup calibrated(const ZoneOptions& zone) {
     ro = rectifier->right().clone();
   };
   const RectifiedGeometry g = rectifiedGeometry(calibration);
+  setup.rig = g;
   const ViethMuellerCircle circle =
       viethMuellerCircle(g.baseline, fixationAtDistance(g.baseline, zone.fixation));
   setup.thresholds = [g, circle](const Frame&, std::vector<std::int16_t>& out) {
     horopterThresholds(g, circle, out);
   };
   return setup;
-}
-
-// The synthetic scene's rig and the vergence each frame was rendered with.
-ThresholdFunction syntheticThresholds(const synth::SyntheticScene& scene) {
-  const RectifiedGeometry g{scene.focalPx(), scene.cx(), scene.baselineM(), scene.cy()};
-  return [g](const Frame& f, std::vector<std::int16_t>& out) {
-    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
-    if (!truth) throw Error("a synthetic frame without its truth");
-    if (!(truth->head.vergence > 1e-9)) {
-      std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front
-      return;
-    }
-    horopterThresholds(
-        g, viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence)),
-        out);
-  };
 }
 
 ThresholdFunction disparityThresholds(const ZoneOptions& zone, const StereoParams& stereo) {
@@ -70,10 +56,14 @@ ThresholdFunction disparityThresholds(const ZoneOptions& zone, const StereoParam
 ZoneSetup zoneSetup(FrameSource& source, const ZoneOptions& zone, const StereoParams& stereo) {
   if (!zone.calib.empty()) return calibrated(zone);
   ZoneSetup setup;
-  if (auto* synthetic = dynamic_cast<SyntheticSource*>(&source))
-    setup.thresholds = syntheticThresholds(synthetic->scene());
-  else
+  if (auto* synthetic = dynamic_cast<SyntheticSource*>(&source)) {
+    const synth::SyntheticScene& scene = synthetic->scene();
+    setup.thresholds = syntheticZoneThresholds(scene);
+    setup.rig = RectifiedGeometry{scene.focalPx(), scene.cx(), scene.baselineM(), scene.cy()};
+    setup.framesPerSecond = scene.options().framesPerSecond;
+  } else {
     setup.thresholds = disparityThresholds(zone, stereo);
+  }
   return setup;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "horopter/geometry.hpp"
 #include "horopter/pipeline.hpp"
 #include "horopter/stereo_params.hpp"
 #include "horopter/vision_stages.hpp"
@@ -23,6 +24,8 @@ struct ZoneOptions {
 struct ZoneSetup {
   RectifyFunction rectify;  // empty: the source is rectified already
   ThresholdFunction thresholds;
+  RectifiedGeometry rig;        // for the tracker's 3-D points; focalPx 0 when unknown
+  double framesPerSecond = 30;  // the tracker's clock for recorded input
 };
 
 // Throws horopter::Error for a bad file or a fixation behind the cameras.

@@ -70,3 +70,25 @@ def test_synthetic_scene_truth():
     assert scene.geometry.focal_px == pytest.approx(scene.focal_px)
     with pytest.raises(horopter.Error):
         scene.command_head(0.0, 0.0, 3.0)
+
+
+def test_detection_tracking_and_movement_stages_fill_their_dicts():
+    model = horopter.MovementModel.train(sequences=5)
+    pipeline = horopter.Pipeline("synthetic", frames=120, size=(320, 240), detect="region",
+                                 movement_model=model)
+    frames = list(pipeline)
+    assert len(frames) == 120
+    for f in frames:
+        assert f["detections"]["scope"] == "horopter-region"
+        assert f["tracking"]["election"] in {"none", "candidate", "godfather"}
+        assert sum(f["movement"]["posterior"].values()) == pytest.approx(1.0)
+    # The main person walks into the zone and stays: faces are found inside it,
+    # and after two seconds inside they are elected godfather.
+    assert sum(face["inside_zone"] for f in frames for face in f["detections"]["faces"]) > 10
+    elected = [f for f in frames if f["tracking"]["election"] == "godfather"]
+    assert elected and all(f["body"]["godfather"] for f in elected)
+    assert elected[-1]["tracking"]["head"]["tracked"]
+    with pytest.raises(ValueError, match="detect"):
+        horopter.Pipeline("synthetic", frames=1, detect="everywhere")
+    with pytest.raises(ValueError, match="movement_model needs detect"):
+        horopter.Pipeline("synthetic", frames=1, movement_model=model)
