@@ -17,6 +17,7 @@ int runHead(Args& args);
 int runBase(Args& args);
 int runTrain(Args& args);
 int runClassify(Args& args);
+int runEvalInteraction(Args& args);
 int runEvalTracking(Args& args);
 int runProfile(Args& args);
 

@@ -24,6 +24,8 @@ const char* kUsage =
     "  train         the movement classifier from synthetic labelled sequences -> model file\n"
     "  classify      movement decisions and robot actions for a recorded track or synthetic\n"
     "                sequences\n"
+    "  eval-interaction  Table III: tracker loss and movement classification rates on\n"
+    "                synthetic trials, full image vs the horopter region, and frames/s\n"
     "  devices       CPU features, backends and OpenCL devices of this machine (--json)\n"
     "  calibrate     stereo calibration from chessboard views -> calib.yml (OpenCV YAML)\n"
     "  rectify       rectified pairs side by side with horizontal lines, to check a calibration\n"
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
     if (command == "eval-tracking") return runEvalTracking(args);
     if (command == "train") return runTrain(args);
     if (command == "classify") return runClassify(args);
+    if (command == "eval-interaction") return runEvalInteraction(args);
     if (command == "devices") return runDevices(args);
     if (command == "calibrate") return runCalibrate(args);
     if (command == "rectify") return runRectify(args);

@@ -47,7 +47,9 @@ LabelledSequence syntheticSequence(std::uint64_t seed, const SequenceOptions& o)
   seq.seed = seed;
   const int frames = static_cast<int>(seconds * o.framesPerSecond);
   BodySample previous;
-  int lostFrames[2] = {0, 0};  // frames left without a track, per hand
+  int lostFrames[2] = {0, 0};     // frames left without a track, per hand
+  int outlierFrames[2] = {0, 0};  // frames left on something else, per hand
+  cv::Point3d outlierOffset[2];   // where, from the hand
   for (int i = 0; i < frames; ++i) {
     const double t = i / o.framesPerSecond;
     const synth::PersonPose pose = synth::poseAt(person, t);
@@ -76,6 +78,18 @@ LabelledSequence syntheticSequence(std::uint64_t seed, const SequenceOptions& o)
     part(pose.hand[0], 1.0, s.leftHand, previous.leftHand);
     part(pose.hand[1], 1.0, s.rightHand, previous.rightHand);
     for (int k = 0; k < 2; ++k) {
+      if (outlierFrames[k] == 0 && rng.uniform(0, 1) < o.handOutlierRate) {
+        outlierFrames[k] = 1 + static_cast<int>(rng.uniform(0, 6));
+        outlierOffset[k] = {rng.uniform(-0.4, 0.4), rng.uniform(-0.3, 0.3), rng.uniform(-0.2, 0.2)};
+      }
+      PartState& p = k ? s.rightHand : s.leftHand;
+      if (outlierFrames[k] > 0 && p.tracked) {
+        --outlierFrames[k];
+        const cv::Point3f d(outlierOffset[k]);
+        if (std::isfinite(p.rig.z)) p.rig += d;
+        p.image += cv::Point2f(static_cast<float>(cam.focalPx * d.x / 1.3),
+                               static_cast<float>(cam.focalPx * d.y / 1.3));
+      }
       if (lostFrames[k] == 0 && rng.uniform(0, 1) < o.handLossRate)
         lostFrames[k] = 3 + static_cast<int>(rng.uniform(0, 18));
       if (lostFrames[k] > 0) {

@@ -43,6 +43,9 @@ struct SequenceOptions {
   // A hand's track is lost (tracked = false) from a frame with this
   // probability, for 3 to 20 frames.
   double handLossRate = 0.01;
+  // A hand's track jumps to something else within reach (clutter, the other
+  // hand) from a frame with this probability, for 1 to 6 frames.
+  double handOutlierRate = 0.01;
 };
 
 struct LabelledSequence {
