@@ -102,9 +102,13 @@ Detections Detector::detect(const Frame& frame) {
   d.searched = roi;
   d.searchedPixels = roi.area();
 
-  // Faces.
-  cv::cvtColor(colour(roi), m.grey, cv::COLOR_BGR2GRAY);
+  // Faces: the cascade is unsteady on a face at the border of its image, so
+  // the region's rectangle gets half the smallest face of margin.
   const int minFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, frame.left.cols / 16);
+  const int pad = region ? minFace / 2 : 0;
+  const cv::Rect faceRoi =
+      cv::Rect(roi.x - pad, roi.y - pad, roi.width + 2 * pad, roi.height + 2 * pad) & image;
+  cv::cvtColor(colour(faceRoi), m.grey, cv::COLOR_BGR2GRAY);
   const double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
   if (scale != 1) cv::resize(m.grey, m.grey, cv::Size(), scale, scale, cv::INTER_AREA);
   std::vector<cv::Rect> boxes;
@@ -113,7 +117,7 @@ Detections Detector::detect(const Frame& frame) {
                              cv::Size(minSize, minSize));
   for (cv::Rect b : boxes) {
     const double k = 1 / scale;
-    b = cv::Rect(cvRound(b.x * k) + roi.x, cvRound(b.y * k) + roi.y, cvRound(b.width * k),
+    b = cv::Rect(cvRound(b.x * k) + faceRoi.x, cvRound(b.y * k) + faceRoi.y, cvRound(b.width * k),
                  cvRound(b.height * k));
     FaceDetection f;
     f.box = b;

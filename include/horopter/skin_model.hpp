@@ -19,8 +19,9 @@ struct SkinThresholds {
 
 class SkinModel {
  public:
-  // The thresholds' box (the default model).
-  explicit SkinModel(const SkinThresholds& thresholds = {});
+  // The thresholds' box (the default model: SkinThresholds' defaults).
+  SkinModel() : SkinModel(SkinThresholds{}) {}
+  explicit SkinModel(const SkinThresholds& thresholds);
 
   // Trains from labelled pixels: `bgr` CV_8UC3 images and `labels` CV_8UC1 of
   // the same size (255 skin, 0 not skin, anything else ignored). A chroma is
