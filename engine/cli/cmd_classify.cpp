@@ -11,6 +11,7 @@
 #include "horopter/movement.hpp"
 #include "horopter/movement_scoring.hpp"
 #include "horopter/movement_training.hpp"
+#include "horopter/tracking_eval.hpp"
 
 namespace horopter::cli {
 
@@ -49,12 +50,56 @@ std::string posteriorJson(const MovementPosterior& p) {
   return o.str() + '}';
 }
 
+// One rendered trial through the whole pipeline, decisions printed as the
+// frames come out of it, then scored against the scene's truth.
+int classifyLive(std::uint64_t seed, int frames, DetectionScope scope, int grace,
+                 std::shared_ptr<const MovementModel> model, bool quiet) {
+  TrialOptions trial;
+  trial.seed = seed;
+  trial.frames = frames;
+  std::vector<std::unique_ptr<Stage>> extra;
+  extra.push_back(makeMovementStage(std::move(model)));
+  std::vector<ScoredFrame> scored;
+  int decisions = 0;
+  const TrialResult r = runTrackingTrial(trial, scope, std::move(extra), [&](const TrialFrame& tf) {
+    ScoredFrame f;
+    f.truth = static_cast<MovementClass>(static_cast<int>(tf.truth.people.at(0).movement));
+    f.onTarget = tf.frame.body.godfather && !tf.lost;
+    f.interacting = tf.truthGodfather;
+    const MovementState* st = tf.frame.movement.get();
+    if (st && st->decision) {
+      f.decision = st->decision;
+      ++decisions;
+      if (!quiet)
+        std::printf("frame %5lld  t %7.2f s  %-14s p %.3f  -> %s   (truth: %s)\n",
+                    static_cast<long long>(tf.frame.index), tf.frame.body.timeS,
+                    movementClassName(*st->decision),
+                    st->posterior[static_cast<int>(*st->decision)],
+                    st->actionStarted ? robotActionName(st->action) : "(ignored)",
+                    movementClassName(f.truth));
+      std::fflush(stdout);
+    }
+    scored.push_back(f);
+  });
+  const MovementScore score = summariseSegments(scored, grace);
+  std::printf("%d decisions in %lld frames (%s, %.1f frames/s)\n", decisions,
+              static_cast<long long>(r.summary.completed), detectionScopeName(scope),
+              r.summary.fps());
+  std::printf(
+      "movements %d, tracker lost in %d, correctly classified %d (%.1f %%), real %.1f %%, "
+      "spurious decisions %d\n",
+      score.segments, score.lost, score.correctTracked, score.classificationPct(),
+      score.realClassificationPct(), score.spurious);
+  return 0;
+}
+
 }  // namespace
 
 int runClassify(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
     std::cout
-        << "Usage: horopter classify (--track FILE | --synthetic SEED[:COUNT]) [options]\n\n"
+        << "Usage: horopter classify (--track FILE | --synthetic SEED[:COUNT] | --live SEED)\n"
+           "                         [options]\n\n"
            "Runs the movement chain (LMA features, the Bayesian classifier, the behaviour\n"
            "layer) and prints each decision with its posterior and the robot's action.\n\n"
            "Input:\n"
@@ -67,7 +112,15 @@ int runClassify(Args& args) {
            "rendering),\n"
            "                          seeds S..S+N-1; also scored per movement against the labels\n"
            "                          (classification rate, spurious decisions)\n"
+           "  --live SEED             a live run: the synthetic scene rendered with seed SEED\n"
+           "                          through the whole pipeline (stereo, detection, tracking,\n"
+           "                          head control, movement), decisions printed as they come,\n"
+           "                          then scored against the scene's truth\n"
            "Options:\n"
+           "  --frames N              --live: frames to run (default 300, 10 s)\n"
+           "  --scope S               --live: detection in the horopter's region or the full "
+           "image\n"
+           "                          (region or full, default region)\n"
            "  --model FILE            the model (default: the default model, trained in-process\n"
            "                          from seeds 1000000..1000299)\n"
            "  --write-track FILE      with --synthetic (one sequence): write it as a track file\n"
@@ -85,9 +138,28 @@ int runClassify(Args& args) {
   const int grace = args.intValue("--grace-frames", 15);
   const bool quiet = args.flag("--quiet");
   const bool json = args.flag("--json");
+  const std::string live = args.stringValue("--live", "");
+  const int liveFrames = args.intValue("--frames", 300);
+  const std::string scopeName = args.stringValue("--scope", "region");
   args.finish("classify");
-  if (track.empty() == synthetic.empty())
-    throw Error("classify needs exactly one of --track FILE or --synthetic SEED[:COUNT]");
+  if (int(!track.empty()) + int(!synthetic.empty()) + int(!live.empty()) != 1)
+    throw Error(
+        "classify needs exactly one of --track FILE, --synthetic SEED[:COUNT] or --live SEED");
+  if (!live.empty()) {
+    std::uint64_t seed = 0;
+    int count = 0;
+    parseSeedRange(live, seed, count);
+    if (count != 1) throw Error("--live runs one scene: give one SEED");
+    if (liveFrames < 30 || liveFrames > 100000) throw Error("--frames must be within 30..100000");
+    if (scopeName != "region" && scopeName != "full")
+      throw Error("--scope takes region or full, got '" + scopeName + "'");
+    if (json || !writeTrack.empty())
+      throw Error("--live prints text only (no --json, --write-track)");
+    return classifyLive(
+        seed, liveFrames,
+        scopeName == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion, grace,
+        loadOrTrainMovementModel(modelPath), quiet);
+  }
   if (grace < 0 || grace > 300) throw Error("--grace-frames must be within 0..300");
 
   std::vector<LabelledSequence> inputs;
