@@ -19,7 +19,11 @@
 #include "horopter/detection.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
+#include "horopter/hardware/sim_robot.hpp"
 #include "horopter/head_control.hpp"
+#include "horopter/movement.hpp"
+#include "horopter/movement_training.hpp"
+#include "horopter/robot_stage.hpp"
 #include "horopter/tracking.hpp"
 #include "horopter/tracking_eval.hpp"
 #include "horopter/vision_stages.hpp"
@@ -38,12 +42,15 @@ extern "C" void onInterrupt(int) {
 const char* kRunHelp =
     "Usage: horopter run [options]\n\n"
     "Runs the frame pipeline (capture -> rectify -> disparity -> mask -> detection ->\n"
-    "tracking -> head control -> annotate) with several frames in flight, and writes to the\n"
+    "tracking -> head control -> movement -> robot -> annotate) with several frames in\n"
+    "flight, and writes to the\n"
     "output folder: run.avi (annotated video: left image with the zone's ROI, faces, hand\n"
     "candidates, the godfather's tracks and body triangle; disparity colour map; the image\n"
-    "inside the horopter; a panel with the godfather's state and the head command),\n"
-    "still_*.png and summary.json. With no options: 300 frames of the built-in synthetic\n"
-    "scene. Ctrl-C stops capture and finishes the frames in flight.\n\n"
+    "inside the horopter; a panel with the godfather's state, the head command, the\n"
+    "movement's posterior, decision and action, and with --robot the robot's telemetry),\n"
+    "still_*.png and summary.json (and telemetry.jsonl with --robot). With no options: 300\n"
+    "frames of the built-in synthetic scene. Ctrl-C stops capture and finishes the frames\n"
+    "in flight; with --robot it first latches the base's emergency stop.\n\n"
     "Source:\n"
     "  --source S         synthetic (default), dir:PATH, video:LEFT,RIGHT,\n"
     "                     camera:/dev/videoA,/dev/videoB, sbs:/dev/videoN (side by side)\n"
@@ -68,6 +75,14 @@ const char* kRunHelp =
     "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
     "  --no-head-control  synthetic scene: the head stays still (default: closed loop, a\n"
     "                     command from frame N acts at frame N + 3)\n"
+    "Movement and robot:\n"
+    "  --model FILE       movement model (horopter train; default: the default model, trained\n"
+    "                     in-process in a few seconds)\n"
+    "  --no-movement      no movement analysis (LMA, classifier, behaviour)\n"
+    "  --robot R          none (default) or sim: the real DYNAMIXEL head and Segway RMP\n"
+    "                     drivers on simulated devices (a pty and an in-process CAN bus)\n"
+    "                     receive the head commands and the movement's base velocities;\n"
+    "                     out/telemetry.jsonl logs commands, measured angles and odometry\n"
     "Scheduling:\n"
     "  --backend B        scalar, avx2, opencl..., auto (default auto)\n"
     "  --threads N        threads of the front end's pool (default: all cores)\n"
@@ -105,6 +120,9 @@ struct RunJob {
   ElectionOptions election;
   std::string headFormula = "atan2";
   bool headControl = true;
+  std::string model;
+  bool movement = true;
+  std::string robot = "none";
 };
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -157,6 +175,12 @@ RunJob parseRun(Args& args) {
   if (job.headFormula != "atan2" && job.headFormula != "paper")
     throw Error("--head-formula takes atan2 or paper, got '" + job.headFormula + "'");
   job.headControl = !args.flag("--no-head-control");
+  job.model = args.stringValue("--model", "");
+  job.movement = !args.flag("--no-movement");
+  job.robot = args.stringValue("--robot", job.robot);
+  if (job.robot != "none" && job.robot != "sim")
+    throw Error("--robot takes none or sim, got '" + job.robot +
+                "' (real robots: horopter head / horopter base)");
   if (!(job.fixationDistance > 0 && std::isfinite(job.fixationDistance)))
     throw Error("--fixation must be a positive distance");
   for (const auto& v : {job.fixationDisparity, job.focalPx})
@@ -373,6 +397,30 @@ int runPipeline(Args& args) {
       head.formula = job.headFormula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
       pipeline.add(makeSyntheticHeadControlStage(head, *loop));
     }
+    if (job.movement) {
+      if (!job.json)
+        std::cerr << "horopter run: movement model "
+                  << (job.model.empty() ? "(default)" : job.model) << "\n";
+      pipeline.add(makeMovementStage(loadOrTrainMovementModel(job.model)));
+    }
+  }
+  // The simulated robot: commands go through the real drivers; Ctrl-C latches
+  // the base's emergency stop at once (the robot stage checks it every frame).
+  std::unique_ptr<hw::SimulatedRobot> robot;
+  std::unique_ptr<hw::TelemetryLog> telemetry;
+  if (job.robot == "sim") {
+    if (!detect)
+      throw Error("--robot sim needs detection and tracking: drop --detect off / --until");
+    robot = std::make_unique<hw::SimulatedRobot>();
+    std::filesystem::create_directories(job.outDir);
+    telemetry = std::make_unique<hw::TelemetryLog>(job.outDir + "/telemetry.jsonl");
+    RobotStageOptions r;
+    r.head = &robot->head();
+    r.base = &robot->base();
+    r.telemetrySource = robot.get();
+    r.log = telemetry.get();
+    r.emergencyStop = &gInterrupted;
+    pipeline.add(makeRobotStage(r));
   }
   if (!job.json)
     std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name << ", "
@@ -389,6 +437,18 @@ int runPipeline(Args& args) {
   }
   std::signal(SIGINT, previous);
   output.finish();
+  if (robot) {
+    if (summary.stoppedByRequest) robot->base().emergencyStop();
+    const hw::TelemetrySample last = robot->sample();
+    robot->shutdown();  // zero velocity, threads joined
+    if (!job.json)
+      std::printf(
+          "robot (simulated): %ld telemetry lines in %s/telemetry.jsonl; odometry x %.2f m, "
+          "heading %.0f deg%s\n",
+          telemetry->lines(), job.outDir.c_str(), last.odometry ? last.odometry->x : 0.0,
+          last.odometry ? last.odometry->heading * 57.29578 : 0.0,
+          summary.stoppedByRequest ? "; emergency stop latched" : "");
+  }
 
   const std::string json = summaryJson(summary);
   std::ofstream(job.outDir + "/summary.json") << json << "\n";

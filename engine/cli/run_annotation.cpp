@@ -4,7 +4,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "horopter/detection.hpp"
+#include "horopter/movement.hpp"
 #include "horopter/opencv.hpp"
+#include "horopter/robot_stage.hpp"
 #include "horopter/synthetic_scene.hpp"
 #include "horopter/tracking.hpp"
 #include "io/disparity_images.hpp"
@@ -130,6 +132,8 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
       label(panel, text, line++);
     }
   }
+  if (frame.movement) drawMovementOverlay(panel, *frame.movement);
+  if (frame.robot) drawRobotOverlay(panel, *frame.robot);
   return mosaic;
 }
 

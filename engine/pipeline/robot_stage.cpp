@@ -20,6 +20,15 @@ class RobotStage final : public Stage {
   std::string name() const override { return "robot"; }
 
   void process(Frame& f) override {
+    if (options_.emergencyStop && options_.emergencyStop->load() && !stopped_) {
+      if (options_.base) options_.base->emergencyStop();
+      if (options_.head) options_.head->halt();
+      stopped_ = true;
+    }
+    if (stopped_) {
+      record(f);
+      return;
+    }
     if (options_.head && f.tracking && f.tracking->headCommand) {
       hw::HeadAngles target = *f.tracking->headCommand;
       if (f.movement && f.movement->headOffset) {
@@ -31,6 +40,11 @@ class RobotStage final : public Stage {
     // The movement stage gives a velocity every frame (zero when idle), which
     // keeps the base's 200 ms watchdog fed while the pipeline runs.
     if (options_.base && f.movement) options_.base->command(f.movement->base);
+    record(f);
+  }
+
+ private:
+  void record(Frame& f) {
     auto state = std::make_shared<RobotState>();
     state->frame = f.index;
     if (options_.telemetrySource) {
@@ -40,8 +54,8 @@ class RobotStage final : public Stage {
     f.robot = std::move(state);
   }
 
- private:
   RobotStageOptions options_;
+  bool stopped_ = false;
 };
 
 }  // namespace

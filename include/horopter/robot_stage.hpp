@@ -6,6 +6,7 @@
 // last, on a SimulatedRobot (real drivers on simulated devices).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <opencv2/core.hpp>
 
@@ -28,6 +29,9 @@ struct RobotStageOptions {
   // Optional: the telemetry source and log (not owned; both or neither).
   const hw::SimulatedRobot* telemetrySource = nullptr;
   hw::TelemetryLog* log = nullptr;
+  // Optional: once it reads true (Ctrl-C), the base's emergency stop is
+  // latched and no more commands are sent.
+  const std::atomic<bool>* emergencyStop = nullptr;
 };
 
 // The stage "robot". Needs the tracking stage (head) and/or the movement

@@ -3,6 +3,7 @@
 // through the pipeline, with one telemetry line per frame.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -78,6 +79,21 @@ TEST(RobotStage, HeadTurnsAndBaseDrivesWithOneTelemetryLinePerFrame) {
     ++lines;
   EXPECT_EQ(lines, 60);
   std::filesystem::remove(path);
+}
+
+TEST(RobotStage, StopRequestLatchesTheEmergencyStopAndSendsNothingMore) {
+  hw::SimulatedRobot robot;
+  std::atomic<bool> stop{true};  // Ctrl-C before the first frame
+  RobotStageOptions options{&robot.head(), &robot.base(), nullptr, nullptr};
+  options.emergencyStop = &stop;
+  auto stage = makeRobotStage(options);
+  Frame f;
+  decide(f);
+  stage->process(f);
+  EXPECT_TRUE(robot.base().emergencyStopped());
+  ASSERT_TRUE(f.robot);
+  EXPECT_FALSE(robot.sample().baseCommanded.has_value());  // the drive was never sent
+  robot.shutdown();
 }
 
 TEST(RobotStage, ALogNeedsItsTelemetrySource) {
