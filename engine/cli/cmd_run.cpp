@@ -193,26 +193,6 @@ RunJob parseRun(Args& args) {
   return job;
 }
 
-// Thresholds for an uncalibrated rectified source: the fixation point is
-// given by its disparity on the centre column.
-ThresholdFunction disparityThresholds(const RunJob& job) {
-  const double fixation =
-      job.fixationDisparity.value_or(job.stereo.minDisparity + job.stereo.numDisparities / 2.0);
-  if (fixation <= 0)
-    throw Error(
-        "the middle of the search range is not in front of the cameras: pass "
-        "--fixation-disparity D with D > 0");
-  const std::optional<double> focal = job.focalPx;
-  return [fixation, focal](const Frame& f, std::vector<std::int16_t>& out) {
-    RectifiedGeometry g;
-    g.focalPx = focal.value_or(f.disparity.cols);
-    g.cx = (f.disparity.cols - 1) / 2.0;
-    g.cy = (f.disparity.rows - 1) / 2.0;
-    g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
-    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
-  };
-}
-
 // Rectification and thresholds from a calibration file: maps computed once,
 // the zone from the rectified geometry and a fixation straight ahead.
 std::pair<RectifyFunction, ThresholdFunction> calibrated(const RunJob& job) {
@@ -361,7 +341,7 @@ int runPipeline(Args& args) {
   } else if (loop) {
     thresholds = syntheticZoneThresholds(loop->scene());
   } else {
-    thresholds = disparityThresholds(job);
+    thresholds = fixationDisparityThresholds(job.stereo, job.fixationDisparity, job.focalPx);
   }
   const synth::SyntheticScene* scene = loop ? &loop->scene() : nullptr;
   if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get())) scene = &synthetic->scene();

@@ -3,10 +3,13 @@
 // is still in flight downstream.
 #include "horopter/vision_stages.hpp"
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "horopter/error.hpp"
 #include "horopter/frontend.hpp"
+#include "horopter/geometry.hpp"
 #include "horopter/kernels.hpp"
 #include "horopter/opencl_frontend.hpp"
 #include "horopter/opencv.hpp"
@@ -126,6 +129,28 @@ std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const Medi
 std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds, const StereoParams& stereo,
                                      const Backend& backend) {
   return std::make_unique<MaskStage>(std::move(thresholds), stereo, backend);
+}
+
+ThresholdFunction fixationDisparityThresholds(const StereoParams& stereo,
+                                              std::optional<double> fixationDisparityPx,
+                                              std::optional<double> focalPx) {
+  const double fixation =
+      fixationDisparityPx.value_or(stereo.minDisparity + stereo.numDisparities / 2.0);
+  if (!(fixation > 0 && std::isfinite(fixation)))
+    throw Error("the fixation disparity must be a positive number of pixels, got " +
+                std::to_string(fixation) +
+                (fixationDisparityPx ? "" : " (the middle of the search range)") +
+                ": give the fixation point's disparity on the centre column");
+  if (focalPx && !(*focalPx > 0 && std::isfinite(*focalPx)))
+    throw Error("the focal length must be a positive number of pixels");
+  return [fixation, focalPx](const Frame& f, std::vector<std::int16_t>& out) {
+    RectifiedGeometry g;
+    g.focalPx = focalPx.value_or(f.disparity.cols);
+    g.cx = (f.disparity.cols - 1) / 2.0;
+    g.cy = (f.disparity.rows - 1) / 2.0;
+    g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
+    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
+  };
 }
 
 }  // namespace horopter

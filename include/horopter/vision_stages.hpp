@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "horopter/backend.hpp"
 #include "horopter/pipeline.hpp"
@@ -30,5 +31,14 @@ std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const Medi
 using ThresholdFunction = std::function<void(const Frame& frame, std::vector<std::int16_t>& out)>;
 std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds, const StereoParams& stereo,
                                      const Backend& backend);
+
+// Thresholds for a source that is rectified already and has no calibration:
+// the fixation point is given by its disparity (px) on the centre column
+// (default: the middle of the search range) and the focal length (default:
+// the image width); thresholds in pixels do not depend on the baseline's
+// unit. Throws horopter::Error for a fixation that is not a positive disparity.
+ThresholdFunction fixationDisparityThresholds(const StereoParams& stereo,
+                                              std::optional<double> fixationDisparityPx,
+                                              std::optional<double> focalPx);
 
 }  // namespace horopter

@@ -9,6 +9,7 @@
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
 #include "horopter/tracking_eval.hpp"
+#include "horopter/vision_stages.hpp"
 
 namespace horopter::python {
 
@@ -33,24 +34,6 @@ ZoneSetup calibrated(const ZoneOptions& zone) {
   return setup;
 }
 
-ThresholdFunction disparityThresholds(const ZoneOptions& zone, const StereoParams& stereo) {
-  const double fixation =
-      zone.fixationDisparity.value_or(stereo.minDisparity + stereo.numDisparities / 2.0);
-  if (!(fixation > 0 && std::isfinite(fixation)))
-    throw Error(
-        "the fixation disparity must be a positive number of pixels: pass "
-        "fixation_disparity=D with D > 0");
-  const std::optional<double> focal = zone.focalPx;
-  return [fixation, focal](const Frame& f, std::vector<std::int16_t>& out) {
-    RectifiedGeometry g;
-    g.focalPx = focal.value_or(f.disparity.cols);
-    g.cx = (f.disparity.cols - 1) / 2.0;
-    g.cy = (f.disparity.rows - 1) / 2.0;
-    g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
-    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
-  };
-}
-
 }  // namespace
 
 ZoneSetup zoneSetup(FrameSource& source, const ZoneOptions& zone, const StereoParams& stereo) {
@@ -62,7 +45,7 @@ ZoneSetup zoneSetup(FrameSource& source, const ZoneOptions& zone, const StereoPa
     setup.rig = RectifiedGeometry{scene.focalPx(), scene.cx(), scene.baselineM(), scene.cy()};
     setup.framesPerSecond = scene.options().framesPerSecond;
   } else {
-    setup.thresholds = disparityThresholds(zone, stereo);
+    setup.thresholds = fixationDisparityThresholds(stereo, zone.fixationDisparity, zone.focalPx);
   }
   return setup;
 }
