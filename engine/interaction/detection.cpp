@@ -20,6 +20,8 @@ struct Detector::Impl {
   cv::CascadeClassifier cascade;
   cv::Mat grey, skin, grown, labels, stats, centroids;
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
+  std::vector<cv::Rect> followed;  // the previous frame's faces
+  int sinceFullSearch = 0;         // frames since the last full search
 };
 
 namespace {
@@ -46,6 +48,8 @@ Detector::Detector(DetectorOptions options)
   if (!(o.scaleFactor > 1.0 && o.scaleFactor < 2.0))
     throw Error("face scale factor must be in (1, 2), e.g. 1.1");
   if (o.minNeighbors < 0) throw Error("face minNeighbors must be >= 0");
+  if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10))
+    throw Error("fullSearchEvery must be >= 1 and followMarginFaces within 0..10");
   if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
   if (o.minFacePx != 0 && o.minFacePx < 20)
     throw Error(
@@ -108,17 +112,47 @@ Detections Detector::detect(const Frame& frame) {
   const int pad = region ? minFace / 2 : 0;
   const cv::Rect faceRoi =
       cv::Rect(roi.x - pad, roi.y - pad, roi.width + 2 * pad, roi.height + 2 * pad) & image;
-  cv::cvtColor(colour(faceRoi), m.grey, cv::COLOR_BGR2GRAY);
   const double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
-  if (scale != 1) cv::resize(m.grey, m.grey, cv::Size(), scale, scale, cv::INTER_AREA);
-  std::vector<cv::Rect> boxes;
   const int minSize = std::max(20, cvRound(minFace * scale));
-  m.cascade.detectMultiScale(m.grey, boxes, o.scaleFactor, o.minNeighbors, 0,
-                             cv::Size(minSize, minSize));
-  for (cv::Rect b : boxes) {
+  std::vector<cv::Rect> boxes;  // image coordinates
+  // The cascade over `area` (image coordinates) for faces up to maxFace px wide (0: any).
+  auto search = [&](const cv::Rect& area, int maxFace) {
+    if (area.width < minFace || area.height < minFace) return;
+    cv::cvtColor(colour(area), m.grey, cv::COLOR_BGR2GRAY);
+    if (scale != 1) cv::resize(m.grey, m.grey, cv::Size(), scale, scale, cv::INTER_AREA);
+    std::vector<cv::Rect> found;
+    const int maxSize = maxFace > 0 ? std::max(minSize, cvRound(maxFace * scale)) : 0;
+    m.cascade.detectMultiScale(m.grey, found, o.scaleFactor, o.minNeighbors, 0,
+                               cv::Size(minSize, minSize), cv::Size(maxSize, maxSize));
     const double k = 1 / scale;
-    b = cv::Rect(cvRound(b.x * k) + faceRoi.x, cvRound(b.y * k) + faceRoi.y, cvRound(b.width * k),
-                 cvRound(b.height * k));
+    for (const cv::Rect& b : found)
+      boxes.emplace_back(cvRound(b.x * k) + area.x, cvRound(b.y * k) + area.y, cvRound(b.width * k),
+                         cvRound(b.height * k));
+  };
+  const bool follow = !m.followed.empty() && m.sinceFullSearch + 1 < o.fullSearchEvery;
+  if (follow) {
+    ++m.sinceFullSearch;
+    for (const cv::Rect& f : m.followed) {
+      const int g = cvRound(o.followMarginFaces * f.width);
+      search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi, 2 * f.width);
+    }
+    // Windows of faces close together overlap: keep one box of each face.
+    std::sort(boxes.begin(), boxes.end(), [](const cv::Rect& a, const cv::Rect& b) {
+      return std::tie(a.x, a.y, a.width, a.height) < std::tie(b.x, b.y, b.width, b.height);
+    });
+    std::vector<cv::Rect> unique;
+    for (const cv::Rect& b : boxes) {
+      const bool seen = std::any_of(unique.begin(), unique.end(), [&](const cv::Rect& u) {
+        return (u & b).area() * 2 > std::min(u.area(), b.area());
+      });
+      if (!seen) unique.push_back(b);
+    }
+    boxes = std::move(unique);
+  } else {
+    m.sinceFullSearch = 0;
+    search(faceRoi, 0);
+  }
+  for (const cv::Rect& b : boxes) {
     FaceDetection f;
     f.box = b;
     f.centre = cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height);
@@ -127,6 +161,12 @@ Detections Detector::detect(const Frame& frame) {
     if (region && !f.insideZone) continue;  // the region holds the zone only
     d.faces.push_back(f);
   }
+  // Followed next frame; a face lost here brings a full search next frame.
+  const bool lostOne = follow && d.faces.size() < m.followed.size();
+  m.followed.clear();
+  if (!lostOne)
+    for (const FaceDetection& f : d.faces)
+      m.followed.push_back(f.box);
   std::sort(d.faces.begin(), d.faces.end(), [](const FaceDetection& a, const FaceDetection& b) {
     return std::tie(a.box.x, a.box.y, a.box.width) < std::tie(b.box.x, b.box.y, b.box.width);
   });

@@ -38,6 +38,14 @@ struct DetectorOptions {
   // smallest face would fall under 20 px: a 40 px face is 30 px at 0.75,
   // for far fewer windows.
   double faceScale = 0.75;
+  // Following: between full searches of the region (one every
+  // fullSearchEvery frames), the cascade looks only around the faces of the
+  // previous frame, in a window followMarginFaces face widths wider on each
+  // side, for faces at most twice as wide; a frame that loses a face is
+  // followed by a full search. Most frames then slide the cascade over a few
+  // hundred windows instead of the whole region. 1: a full search every frame.
+  int fullSearchEvery = 5;
+  double followMarginFaces = 1.0;
   // Region: the mask is closed with a disc this wide (0: not), then eroded
   // by maskErodePx: block matching fattens the foreground by about half its
   // block, so a rim of the background behind the silhouette (skin-coloured

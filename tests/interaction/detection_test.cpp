@@ -73,6 +73,25 @@ TEST(Detection, FullImageSeesMoreThanTheZone) {
   EXPECT_TRUE(outside);
 }
 
+// Between full searches the cascade looks only around the previous frame's
+// faces: the next frames still find the face where a full search does.
+TEST(Detection, FollowingFindsTheFaceAFullSearchFinds) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  DetectorOptions everywhere;
+  everywhere.fullSearchEvery = 1;
+  Detector following(DetectorOptions{}), full(everywhere);
+  for (int index = 100; index < 104; ++index) {
+    const Frame frame = renderedFrame(index);
+    const Detections a = following.detect(frame), b = full.detect(frame);
+    ASSERT_FALSE(b.faces.empty()) << "frame " << index;
+    ASSERT_EQ(a.faces.size(), b.faces.size()) << "frame " << index;
+    for (std::size_t i = 0; i < a.faces.size(); ++i)
+      EXPECT_TRUE(near(a.faces[i].centre, b.faces[i].centre, 0.25 * b.faces[i].width))
+          << "frame " << index << ": " << a.faces[i].box << " vs " << b.faces[i].box;
+  }
+}
+
 TEST(Detection, BadInputIsAnError) {
   if (!std::filesystem::exists(kDefaultFaceCascade)) GTEST_SKIP() << "opencv-data missing";
   DetectorOptions o;
@@ -80,6 +99,9 @@ TEST(Detection, BadInputIsAnError) {
   EXPECT_THROW(Detector{o}, Error);
   o = DetectorOptions{};
   o.scaleFactor = 1.0;
+  EXPECT_THROW(Detector{o}, Error);
+  o = DetectorOptions{};
+  o.fullSearchEvery = 0;
   EXPECT_THROW(Detector{o}, Error);
   Detector detector(DetectorOptions{});
   Frame frame;
