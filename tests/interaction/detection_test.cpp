@@ -78,9 +78,9 @@ TEST(Detection, FullImageSeesMoreThanTheZone) {
 TEST(Detection, FollowingFindsTheFaceAFullSearchFinds) {
   if (!texturesPresent())
     GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
-  DetectorOptions everywhere;
-  everywhere.fullSearchEvery = 1;
-  Detector following(DetectorOptions{}), full(everywhere);
+  DetectorOptions followOptions;
+  followOptions.fullSearchEvery = 5;
+  Detector following(followOptions), full(DetectorOptions{});
   for (int index = 100; index < 104; ++index) {
     const Frame frame = renderedFrame(index);
     const Detections a = following.detect(frame), b = full.detect(frame);
