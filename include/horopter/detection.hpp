@@ -44,9 +44,10 @@ struct DetectorOptions {
   // side, for faces at most twice as wide; a frame that loses a face is
   // followed by a full search. Most frames then slide the cascade over a few
   // hundred windows instead of the whole region. 1 (the default): a full
-  // search every frame. On 20 held-out trials (eval-tracking --seed 1000),
-  // 5 took region detection from 37 to 22 ms per frame but raised the
-  // tracker loss from 30.7 % to 36.0 % (hands lost with their face).
+  // search every frame. With 5, `horopter run --detect region` spent 23.5
+  // instead of 37.4 ms per frame in detection, but on 20 held-out trials
+  // (eval-tracking --seed 1000 --frames 200) the region's tracker loss rose
+  // from 30.7 % to 36.0 % (hands lost with their face).
   int fullSearchEvery = 1;
   double followMarginFaces = 1.0;
   // Region: the mask is closed with a disc this wide (0: not), then eroded
