@@ -56,6 +56,11 @@ const char* kEvalTrackingHelp =
     "                     below the full image's (for tests)\n"
     "  --stills DIR       write every 10th frame of each run, annotated (run's view, with the\n"
     "                     truth's head and hands as white crosses) to DIR\n"
+    "  --diagnose         count, per part, why it was lost: the first of no-godfather,\n"
+    "                     barely-visible, outside-mask, face-neck-cut, merged, no-skin,\n"
+    "                     removed (no detection near the truth), filtered, no-track, swapped,\n"
+    "                     elsewhere (a detection there, the track not); with -v, one line\n"
+    "                     per lost part on stderr\n"
     "  --json             print the results as one JSON object\n"
     "  -v, --verbose      one line per trial on stderr\n";
 
@@ -110,6 +115,7 @@ int runEvalTracking(Args& args) {
   const bool json = args.flag("--json");
   const bool verbose = args.flag("--verbose") || args.flag("-v");
   const std::string stills = args.stringValue("--stills", "");
+  const bool diagnose = args.flag("--diagnose");
   args.finish("eval-tracking");
   if (trials < 1) throw Error("--trials must be >= 1");
   if (seed < 0) throw Error("--seed must be >= 0");
@@ -127,6 +133,10 @@ int runEvalTracking(Args& args) {
   if (scope != "full") scopes.push_back(DetectionScope::HoropterRegion);
   if (scope != "region") scopes.push_back(DetectionScope::FullImage);
   std::vector<ScopeScore> scores(scopes.size());
+  std::vector<LossDiagnosis> causes(scopes.size());
+  if (verbose)
+    for (LossDiagnosis& c : causes)
+      c.log = stderr;
   const bool tty = isatty(STDERR_FILENO) && !json;
   for (int i = 0; i < trials; ++i) {
     TrialOptions o = base;
@@ -152,7 +162,13 @@ int runEvalTracking(Args& args) {
           if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
         };
       }
-      const TrialResult r = runTrackingTrial(o, scopes[k], {}, dump);
+      TrialFrameCallback onFrame = dump;
+      if (diagnose)
+        onFrame = [&, dump, k](const TrialFrame& t) {
+          if (dump) dump(t);
+          causes[k].add(t, o);
+        };
+      const TrialResult r = runTrackingTrial(o, scopes[k], {}, onFrame);
       scores[k].add(r);
       if (verbose)
         std::fprintf(
@@ -192,6 +208,24 @@ int runEvalTracking(Args& args) {
       std::printf("region vs full image: tracker loss %s, detection %.1fx faster\n",
                   better ? "lower" : "NOT lower",
                   scores[0].detectionMs > 0 ? scores[1].detectionMs / scores[0].detectionMs : 0.0);
+  }
+  if (diagnose) {
+    std::FILE* out = json ? stderr : stdout;
+    std::fprintf(out, "\nlost parts by cause (frames):\n%-16s %-6s", "scope", "part");
+    for (int c = 0; c < static_cast<int>(LossCause::Count); ++c)
+      std::fprintf(out, " %s", lossCauseName(static_cast<LossCause>(c)));
+    std::fprintf(out, "\n");
+    for (std::size_t k = 0; k < scopes.size(); ++k)
+      for (int part = 0; part < 3; ++part) {
+        std::fprintf(out, "%-16s %-6s", detectionScopeName(scopes[k]),
+                     part == 0 ? "head" : (part == 1 ? "left" : "right"));
+        for (int c = 0; c < static_cast<int>(LossCause::Count); ++c)
+          std::fprintf(
+              out, " %*lld",
+              static_cast<int>(std::string(lossCauseName(static_cast<LossCause>(c))).size()),
+              static_cast<long long>(causes[k].counts[part][c]));
+        std::fprintf(out, "\n");
+      }
   }
   if (requireBetter && !better) {
     std::fprintf(stderr,

@@ -124,7 +124,8 @@ class Scorer {
   Scorer(const TrialOptions& o, double focalPx, double baselineM, TrialResult& r)
       : election_(o.tracker.election), focal_(focalPx), baseline_(baselineM), r_(r) {}
 
-  bool score(const Frame& f, const synth::FrameTruth& truth, bool& truthGodfather) {
+  bool score(const Frame& f, const synth::FrameTruth& truth, bool& truthGodfather,
+             bool (&partLost)[3]) {
     ++r_.frames;
     countDetections(f, truth);
     const synth::PersonTruth& main = truth.people.at(0);
@@ -136,20 +137,21 @@ class Scorer {
     const double tol = tolerancePx(main);
     const BodySample& b = f.body;
     bool lost = false;
-    auto part = [&](bool visible, const PartState& track, cv::Point2f at, PartScore& score) {
+    auto part = [&](bool visible, const PartState& track, cv::Point2f at, PartScore& score,
+                    bool& partIsLost) {
       if (!visible) return;
       ++score.visible;
       if (!b.godfather || !track.tracked || !near(track.image, at, tol)) {
         ++score.lost;
-        lost = true;
+        lost = partIsLost = true;
       }
     };
-    part(main.visible, b.head, main.head2d, r_.head);
+    part(main.visible, b.head, main.head2d, r_.head, partLost[0]);
     part(handVisible(truth, main.leftHand2d, main.leftHand3d, focal_, baseline_, main.faceWidthPx),
-         b.leftHand, main.leftHand2d, r_.leftHand);
+         b.leftHand, main.leftHand2d, r_.leftHand, partLost[1]);
     part(
         handVisible(truth, main.rightHand2d, main.rightHand3d, focal_, baseline_, main.faceWidthPx),
-        b.rightHand, main.rightHand2d, r_.rightHand);
+        b.rightHand, main.rightHand2d, r_.rightHand, partLost[2]);
     if (lost) ++r_.lostFrames;
     return lost;
   }
@@ -218,8 +220,16 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
     const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
     if (!truth) throw Error("a synthetic frame without its truth");
     bool truthGodfather = false;
-    const bool lost = scorer.score(f, *truth, truthGodfather);
-    if (onFrame) onFrame(TrialFrame{f, *truth, truthGodfather, lost});
+    bool partLost[3] = {false, false, false};
+    const bool lost = scorer.score(f, *truth, truthGodfather, partLost);
+    if (onFrame)
+      onFrame(TrialFrame{f,
+                         *truth,
+                         truthGodfather,
+                         lost,
+                         {partLost[0], partLost[1], partLost[2]},
+                         scene->focalPx(),
+                         scene->baselineM()});
   };
   const Backend& backend = findBackend(o.backend);
   Pipeline pipeline(po);

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -70,8 +71,10 @@ struct PartScore {
 struct TrialFrame {
   const Frame& frame;
   const synth::FrameTruth& truth;
-  bool truthGodfather = false;  // the main person is the godfather by the truth
-  bool lost = false;            // counted as a tracker-loss frame
+  bool truthGodfather = false;        // the main person is the godfather by the truth
+  bool lost = false;                  // counted as a tracker-loss frame
+  bool partLost[3] = {};              // head, left hand, right hand: visible and lost
+  double focalPx = 0, baselineM = 0;  // the scene's rectified rig
 };
 using TrialFrameCallback = std::function<void(const TrialFrame&)>;
 
@@ -95,6 +98,36 @@ struct TrialResult {
 TrialResult runTrackingTrial(const TrialOptions& options, DetectionScope scope,
                              std::vector<std::unique_ptr<Stage>> extraStages = {},
                              TrialFrameCallback onFrame = {});
+
+// Why a part was lost in a frame (horopter eval-tracking --diagnose): the
+// first cause that holds, in this order.
+enum class LossCause {
+  NoGodfather,  // the tracker has no elected godfather (election late, or head lost)
+  // No detection near the truth (within the scorer's tolerance):
+  BarelyVisible,  // under a third of the hand's disc shows the hand (truth's occlusion)
+  OutsideMask,    // the zone's mask covers under a third of the part's disc
+  FaceNeckCut,    // the part lies in a face's face-and-neck exclusion box
+  Merged,         // a hand candidate's box holds the part but its centroid is elsewhere
+  NoSkin,         // the skin model finds under a fifth of the part's disc
+  Removed,        // skin there, but opened away or under the smallest area
+  // A detection near the truth:
+  Filtered,   // the tracker's reach or area limits refused it
+  NoTrack,    // no track for the part
+  Swapped,    // the part's track is on the other hand
+  Elsewhere,  // the track is elsewhere (neck, clutter, a stale position)
+  Count
+};
+const char* lossCauseName(LossCause cause);
+
+struct LossDiagnosis {
+  // [part][cause]: part 0 head, 1 left hand, 2 right hand.
+  std::int64_t counts[3][static_cast<int>(LossCause::Count)] = {};
+  // When set, one line per lost part: the cause, the truth, the track and
+  // the hand candidates.
+  std::FILE* log = nullptr;
+  // Adds the causes of the lost parts of one scored frame.
+  void add(const TrialFrame& frame, const TrialOptions& options);
+};
 
 // Several trials of one scope, summed.
 struct ScopeScore {
