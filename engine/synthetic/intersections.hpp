@@ -144,7 +144,8 @@ inline double fastAtan2(double y, double x) {
 
 inline bool intersectCapsule(const Primitive& p, const Ray& ray, double tMax, Hit& hit) {
   // Inigo Quilez's capsule intersection, for a direction d of any length.
-  // oa (preVec), ba.oa (pre0), oa.oa (pre1) and ba.ba (pre2) from prepare().
+  // oa (preVec), ba.oa (pre0), oa.oa (pre1), ba.ba (pre2), the axis and
+  // the vectors across it from prepare().
   const Vec3 ba = p.b - p.a, oa = p.preVec;
   const double r = p.radius;
   const double baba = p.pre2, bard = dot(ba, ray.d), baoa = p.pre0;
@@ -184,14 +185,11 @@ inline bool intersectCapsule(const Primitive& p, const Ray& ray, double tMax, Hi
   if (t <= kTMin || t >= tMax) return false;
   hit.t = t;
   const Vec3 q = ray.o + t * ray.d;
-  hit.normal = (1.0 / r) * (q - axisPoint);
+  hit.normal = p.invRadius * (q - axisPoint);
   hit.face = 0;
   // Around the axis (arc length) and along it, in metres.
-  const Vec3 axis = (1.0 / std::sqrt(baba)) * ba;
-  const Vec3 helper = std::abs(axis.y) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
-  const Vec3 e1 = normalized(cross(axis, helper)), e2 = cross(axis, e1);
-  hit.u = r * fastAtan2(dot(hit.normal, e2), dot(hit.normal, e1));
-  hit.v = dot(q - p.a, axis);
+  hit.u = r * fastAtan2(dot(hit.normal, p.across2), dot(hit.normal, p.across1));
+  hit.v = dot(q - p.a, p.axis);
   return true;
 }
 

@@ -45,6 +45,11 @@ void prepare(Primitive& p, Vec3 origin) {
     p.pre0 = dot(ba, p.preVec);
     p.pre1 = dot(p.preVec, p.preVec);
     p.pre2 = dot(ba, ba);
+    p.axis = (1.0 / std::sqrt(p.pre2)) * ba;
+    const Vec3 helper = std::abs(p.axis.y) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
+    p.across1 = normalized(cross(p.axis, helper));
+    p.across2 = cross(p.axis, p.across1);
+    p.invRadius = 1.0 / p.radius;
   }
 }
 

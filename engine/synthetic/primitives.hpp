@@ -38,6 +38,11 @@ struct Primitive {
   // Per-view constants of the ray tests, set by prepare() for one ray origin.
   Vec3 preVec;
   double pre0 = 0, pre1 = 0, pre2 = 0;
+  // Capsule, also set by prepare() (they do not depend on the origin, but are
+  // needed per hit): the unit axis, two unit vectors across it for the
+  // texture's angle, and 1 / radius.
+  Vec3 axis, across1, across2;
+  double invRadius = 0;
 
   // The world-space bounding box (for the screen rectangle).
   void bounds(Vec3& lo, Vec3& hi) const;

@@ -1,6 +1,7 @@
 // The per-pixel ray caster; see rasteriser.hpp.
 #include "synthetic/rasteriser.hpp"
 
+#include "synthetic/capsule_rows.hpp"
 #include "synthetic/intersections.hpp"
 
 #include <opencv2/core/utility.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace horopter::synth {
@@ -90,8 +92,10 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
     prepare(p, camera.centre);
   std::vector<cv::Rect> rects;
   std::vector<ScreenCapsule> capsules;
+  std::vector<std::optional<detail::CapsuleRows>> capsuleRows;
   rects.reserve(primitives.size());
   capsules.reserve(primitives.size());
+  capsuleRows.reserve(primitives.size());
   cv::Rect all;
   for (const Primitive& p : primitives) {
     Vec3 lo, hi;
@@ -99,9 +103,17 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
     rects.push_back(p.shape == Primitive::Shape::Room ? cv::Rect(0, 0, camera.width, camera.height)
                                                       : camera.screenRect(lo, hi));
     capsules.push_back(screenCapsule(camera, p));
+    capsuleRows.emplace_back();
+    if (p.shape == Primitive::Shape::Capsule)
+      capsuleRows.back().emplace(p, camera.rigToWorld, camera.f, camera.cx, camera.cy,
+                                 camera.width);
     if (!rects.back().empty()) all = all.empty() ? rects.back() : (all | rects.back());
   }
   const double pixelMetres = 1.0 / camera.f;
+  // The rig direction's x of each column, as Camera::ray computes it.
+  std::vector<double> columnX(static_cast<std::size_t>(camera.width));
+  for (int x = 0; x < camera.width; ++x)
+    columnX[static_cast<std::size_t>(x)] = (x - camera.cx) / camera.f;
   // A surface is replaced only by a strictly nearer one; each row belongs to
   // one thread, so the split does not change the result.
   cv::parallel_for_(cv::Range(0, camera.height), [&](const cv::Range& rows) {
@@ -111,13 +123,19 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
       auto loop = [&](auto test) {
         const cv::Rect& r = rects[i];
         const ScreenCapsule& capsule = capsules[i];
+        const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
         const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
         for (int y = y0; y < y1; ++y) {
+          int x0 = r.x, x1 = r.x + r.width;
+          if (spans && !spans->span(y, x0, x1)) continue;
           auto* colour = layer.colour.ptr<cv::Vec3b>(y);
           auto* depth = layer.depth.ptr<double>(y);
-          for (int x = r.x; x < r.x + r.width; ++x) {
+          const double rowY = (y - camera.cy) / camera.f;
+          Ray ray;
+          ray.o = camera.centre;
+          for (int x = x0; x < x1; ++x) {
             if (capsule.use && capsule.misses(x, y)) continue;
-            const Ray ray = camera.ray(x, y);
+            ray.d = camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
             Hit hit;
             if (!test(p, ray, depth[x], hit)) continue;
             const cv::Vec3f c = shade(p, ray, hit, pixelMetres);

@@ -33,6 +33,10 @@ class SceneRenderer {
   std::vector<PersonParams> people_;
   Layer staticLayer_[2];
   cv::Mat frameDepth_[2];  // the people drawn over the room's depth
+  // Where the last frame drew into frameDepth_ (the rest equals the room's
+  // depth); frameDepthValid_ is false until a full copy of the current cache.
+  cv::Rect frameDepthDrawn_[2];
+  bool frameDepthValid_ = false;
   bool staticValid_ = false;
   double staticPan_ = 0, staticTilt_ = 0;
   // The room's pixel truth for the cached layers and one vergence.

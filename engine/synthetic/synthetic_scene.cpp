@@ -113,6 +113,7 @@ void SceneRenderer::updateStatic(const HeadPose& head) {
   staticTilt_ = head.tilt;
   staticValid_ = true;
   staticTruthValid_ = false;
+  frameDepthValid_ = false;
   double minDepth = 0;
   cv::minMaxLoc(staticLayer_[0].depth, &minDepth);
   maxStaticDisparityPx_ = focal_ * options_.baselineM / minDepth;
@@ -143,13 +144,23 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   }
   Layer layers[2];
   cv::Rect drawn[2];
+  const bool restoreOnly = frameDepthValid_;
+  frameDepthValid_ = false;  // until both views are drawn (an exception leaves it so)
   for (int eye = 0; eye < 2; ++eye) {
     layers[eye].colour = staticLayer_[eye].colour.clone();
-    // The depth stays inside the renderer: reuse its buffer.
-    staticLayer_[eye].depth.copyTo(frameDepth_[eye]);
+    // The depth stays inside the renderer: reuse its buffer, putting back
+    // the room's depth only where the last frame drew.
+    if (restoreOnly) {
+      const cv::Rect& last = frameDepthDrawn_[eye];
+      if (!last.empty()) staticLayer_[eye].depth(last).copyTo(frameDepth_[eye](last));
+    } else {
+      staticLayer_[eye].depth.copyTo(frameDepth_[eye]);
+    }
     layers[eye].depth = frameDepth_[eye];
     if (!prims.empty()) drawn[eye] = synth::render(camera(head, eye), prims, layers[eye]);
+    frameDepthDrawn_[eye] = drawn[eye];
   }
+  frameDepthValid_ = true;
 
   SyntheticFrame frame;
   frame.left = layers[0].colour;

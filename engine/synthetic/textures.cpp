@@ -61,7 +61,11 @@ inline int wrapIndex(int i, int n) {
 template <bool Wrap>
 cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
   const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
-  const double scale = std::ldexp(1.0, -level);
+  // 2^-level, exact (std::ldexp is a library call per sample).
+  static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
+                                       0.0625,     0.03125,     0.015625,     0.0078125,
+                                       0.00390625, 0.001953125, 0.0009765625, 0.00048828125};
+  const double scale = level < 12 ? kScales[level] : std::ldexp(1.0, -level);
   // Texel centres sit at integer coordinates of each level.
   u = u * scale - 0.5;
   v = v * scale - 0.5;
@@ -87,11 +91,20 @@ cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
     fx = static_cast<float>(u - x0);
     fy = static_cast<float>(v - y0);
   }
-  const auto* r0 = img.ptr<cv::Vec3f>(y0);
-  const auto* r1 = img.ptr<cv::Vec3f>(y1);
-  const cv::Vec3f top = r0[x0] * (1 - fx) + r0[x1] * fx;
-  const cv::Vec3f bottom = r1[x0] * (1 - fx) + r1[x1] * fx;
-  return top * (1 - fy) + bottom * fy;
+  // Bilinear, channel by channel in plain floats (the same operations as
+  // cv::Vec3f's, which the compiler did not keep in registers).
+  const float* a = img.ptr<float>(y0) + 3 * x0;
+  const float* b = img.ptr<float>(y0) + 3 * x1;
+  const float* c = img.ptr<float>(y1) + 3 * x0;
+  const float* d = img.ptr<float>(y1) + 3 * x1;
+  const float gx = 1 - fx, gy = 1 - fy;
+  cv::Vec3f out;
+  for (int k = 0; k < 3; ++k) {
+    const float top = a[k] * gx + b[k] * fx;
+    const float bottom = c[k] * gx + d[k] * fx;
+    out[k] = top * gy + bottom * fy;
+  }
+  return out;
 }
 
 template <bool Wrap>
@@ -102,7 +115,9 @@ cv::Vec3f Texture::sample(double u, double v, double footprint) const {
   if (lod >= last) return sampleLevel<Wrap>(last, u, v);
   const int l0 = static_cast<int>(lod);
   const float f = static_cast<float>(lod - l0);
-  return sampleLevel<Wrap>(l0, u, v) * (1 - f) + sampleLevel<Wrap>(l0 + 1, u, v) * f;
+  const cv::Vec3f a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);
+  const float g = 1 - f;
+  return cv::Vec3f(a[0] * g + b[0] * f, a[1] * g + b[1] * f, a[2] * g + b[2] * f);
 }
 
 cv::Vec3f Texture::sampleWrap(double u, double v, double footprint) const {
