@@ -32,6 +32,30 @@ void Primitive::bounds(Vec3& lo, Vec3& hi) const {
   }
 }
 
+namespace {
+
+bool same(const Vec3& a, const Vec3& b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+bool same(const Material& a, const Material& b) {
+  return a.texture == b.texture && a.mapping == b.mapping && a.texelsPerMetre == b.texelsPerMetre &&
+         a.gain == b.gain;
+}
+
+}  // namespace
+
+bool sameSurface(const Primitive& a, const Primitive& b) {
+  if (a.shape != b.shape || !same(a.a, b.a) || !same(a.b, b.b) || !same(a.radii, b.radii) ||
+      a.radius != b.radius)
+    return false;
+  for (int i = 0; i < 3; ++i)
+    if (!same(a.orient.r[i], b.orient.r[i])) return false;
+  for (int i = 0; i < 6; ++i)
+    if (!same(a.materials[i], b.materials[i])) return false;
+  return true;
+}
+
 void prepare(Primitive& p, Vec3 origin) {
   if (p.shape == Primitive::Shape::Ellipsoid) {
     const Vec3 ol = p.orient.applyInverse(origin - p.a);

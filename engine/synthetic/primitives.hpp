@@ -48,6 +48,10 @@ struct Primitive {
   void bounds(Vec3& lo, Vec3& hi) const;
 };
 
+// Whether two primitives are the same surface (shape, placement, materials;
+// not the per-view constants): they draw the same pixels.
+bool sameSurface(const Primitive& a, const Primitive& b);
+
 // Computes what the ray tests of `p` share for every ray from `origin`;
 // intersect() then needs rays starting there.
 void prepare(Primitive& p, Vec3 origin);

@@ -86,7 +86,17 @@ ScreenCapsule screenCapsule(const Camera& camera, const Primitive& p) {
 
 }  // namespace
 
-cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer) {
+cv::Rect screenRect(const Camera& camera, const Primitive& p) {
+  if (p.shape == Primitive::Shape::Room) return {0, 0, camera.width, camera.height};
+  Vec3 lo, hi;
+  p.bounds(lo, hi);
+  return camera.screenRect(lo, hi);
+}
+
+cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer,
+                cv::Rect clip) {
+  const cv::Rect image(0, 0, camera.width, camera.height);
+  clip = clip.empty() ? image : (clip & image);
   std::vector<Primitive> primitives = unprepared;
   for (Primitive& p : primitives)
     prepare(p, camera.centre);
@@ -98,10 +108,7 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
   capsuleRows.reserve(primitives.size());
   cv::Rect all;
   for (const Primitive& p : primitives) {
-    Vec3 lo, hi;
-    p.bounds(lo, hi);
-    rects.push_back(p.shape == Primitive::Shape::Room ? cv::Rect(0, 0, camera.width, camera.height)
-                                                      : camera.screenRect(lo, hi));
+    rects.push_back(screenRect(camera, p) & clip);
     capsules.push_back(screenCapsule(camera, p));
     capsuleRows.emplace_back();
     if (p.shape == Primitive::Shape::Capsule)
@@ -131,17 +138,33 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
           auto* colour = layer.colour.ptr<cv::Vec3b>(y);
           auto* depth = layer.depth.ptr<double>(y);
           const double rowY = (y - camera.cy) / camera.f;
-          Ray ray;
-          ray.o = camera.centre;
-          for (int x = x0; x < x1; ++x) {
-            if (capsule.use && capsule.misses(x, y)) continue;
-            ray.d = camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-            Hit hit;
-            if (!test(p, ray, depth[x], hit)) continue;
-            const cv::Vec3f c = shade(p, ray, hit, pixelMetres);
-            depth[x] = hit.t;
-            colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                                  cv::saturate_cast<uchar>(c[2]));
+          // In batches: the ray tests of a batch, then the shading of its hits.
+          // Each pixel is one long chain of dependent operations; two short
+          // loops let the processor overlap neighbouring pixels. The result
+          // is the same as one loop: a primitive touches each pixel once.
+          constexpr int kBatch = 32;
+          Ray rays[kBatch];
+          Hit hits[kBatch];
+          int xs[kBatch];
+          for (int xb = x0; xb < x1; xb += kBatch) {
+            const int xe = std::min(x1, xb + kBatch);
+            int n = 0;
+            for (int x = xb; x < xe; ++x) {
+              if (capsule.use && capsule.misses(x, y)) continue;
+              Ray& ray = rays[n];
+              ray.o = camera.centre;
+              ray.d =
+                  camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
+              if (!test(p, ray, depth[x], hits[n])) continue;
+              xs[n++] = x;
+            }
+            for (int k = 0; k < n; ++k) {
+              const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
+              depth[xs[k]] = hits[k].t;
+              colour[xs[k]] =
+                  cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
+                            cv::saturate_cast<uchar>(c[2]));
+            }
           }
         }
       };

@@ -35,9 +35,15 @@ struct Layer {
   void reset(int width, int height);
 };
 
-// Draws `primitives` over `layer` where they are nearer than what it holds;
-// returns the union of the pixel rectangles it looked at. Rows are split
-// across OpenCV's threads; the result does not depend on the split.
-cv::Rect render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer);
+// The pixels a primitive may draw into: render() casts its rays there only
+// (the whole image for the room).
+cv::Rect screenRect(const Camera& camera, const Primitive& primitive);
+
+// Draws `primitives` over `layer` where they are nearer than what it holds,
+// inside `clip` only (empty: the whole image); returns the union of the pixel
+// rectangles it looked at. Rows are split across OpenCV's threads; the result
+// does not depend on the split.
+cv::Rect render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer,
+                cv::Rect clip = {});
 
 }  // namespace horopter::synth

@@ -32,11 +32,18 @@ class SceneRenderer {
   std::vector<Primitive> room_;
   std::vector<PersonParams> people_;
   Layer staticLayer_[2];
-  cv::Mat frameDepth_[2];  // the people drawn over the room's depth
-  // Where the last frame drew into frameDepth_ (the rest equals the room's
-  // depth); frameDepthValid_ is false until a full copy of the current cache.
-  cv::Rect frameDepthDrawn_[2];
-  bool frameDepthValid_ = false;
+  // The last frame, kept to draw the next one incrementally: when the head
+  // has not moved, only the rectangles of the people's primitives that
+  // changed (where they were and where they are) are drawn again, over the
+  // room, with every primitive; the rest of the image, depth and truth is
+  // the same as in the last frame. frameValid_ is false until a full frame
+  // is drawn for the current caches.
+  Layer frame_[2];
+  FrameTruth frameTruth_;
+  std::vector<Primitive> framePrimitives_;
+  std::vector<cv::Rect> frameRects_[2];
+  HeadPose frameHead_;
+  bool frameValid_ = false;
   bool staticValid_ = false;
   double staticPan_ = 0, staticTilt_ = 0;
   // The room's pixel truth for the cached layers and one vergence.

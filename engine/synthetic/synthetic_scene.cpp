@@ -113,7 +113,7 @@ void SceneRenderer::updateStatic(const HeadPose& head) {
   staticTilt_ = head.tilt;
   staticValid_ = true;
   staticTruthValid_ = false;
-  frameDepthValid_ = false;
+  frameValid_ = false;
   double minDepth = 0;
   cv::minMaxLoc(staticLayer_[0].depth, &minDepth);
   maxStaticDisparityPx_ = focal_ * options_.baselineM / minDepth;
@@ -142,29 +142,46 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
     poses.push_back(poseAt(p, t));
     addPrimitives(p, poses.back(), prims);
   }
-  Layer layers[2];
+  // Incremental when the head is where it was for the last frame (so are
+  // the room's layers and truth) and the people are made of as many parts.
+  const bool incremental = frameValid_ && head.pan == frameHead_.pan &&
+                           head.tilt == frameHead_.tilt && head.vergence == frameHead_.vergence &&
+                           prims.size() == framePrimitives_.size();
+  frameValid_ = false;  // until the frame is complete (an exception leaves it so)
+  const cv::Rect image(0, 0, options_.width, options_.height);
   cv::Rect drawn[2];
-  const bool restoreOnly = frameDepthValid_;
-  frameDepthValid_ = false;  // until both views are drawn (an exception leaves it so)
   for (int eye = 0; eye < 2; ++eye) {
-    layers[eye].colour = staticLayer_[eye].colour.clone();
-    // The depth stays inside the renderer: reuse its buffer, putting back
-    // the room's depth only where the last frame drew.
-    if (restoreOnly) {
-      const cv::Rect& last = frameDepthDrawn_[eye];
-      if (!last.empty()) staticLayer_[eye].depth(last).copyTo(frameDepth_[eye](last));
+    const Camera cam = camera(head, eye);
+    Layer& layer = frame_[eye];
+    std::vector<cv::Rect> rects(prims.size());
+    for (std::size_t i = 0; i < prims.size(); ++i)
+      rects[i] = screenRect(cam, prims[i]);
+    cv::Rect clip = image;
+    if (incremental) {
+      // Where a changed part was or is now; the room goes back there.
+      clip = {};
+      for (std::size_t i = 0; i < prims.size(); ++i) {
+        if (sameSurface(prims[i], framePrimitives_[i])) continue;
+        for (const cv::Rect& r : {rects[i], frameRects_[eye][i]})
+          if (!r.empty()) clip = clip.empty() ? r : (clip | r);
+      }
+      clip &= image;
+      if (!clip.empty()) {
+        staticLayer_[eye].colour(clip).copyTo(layer.colour(clip));
+        staticLayer_[eye].depth(clip).copyTo(layer.depth(clip));
+      }
     } else {
-      staticLayer_[eye].depth.copyTo(frameDepth_[eye]);
+      staticLayer_[eye].colour.copyTo(layer.colour);
+      staticLayer_[eye].depth.copyTo(layer.depth);
     }
-    layers[eye].depth = frameDepth_[eye];
-    if (!prims.empty()) drawn[eye] = synth::render(camera(head, eye), prims, layers[eye]);
-    frameDepthDrawn_[eye] = drawn[eye];
+    if (!prims.empty() && !clip.empty()) drawn[eye] = synth::render(cam, prims, layer, clip);
+    if (incremental) drawn[eye] = clip;
+    frameRects_[eye] = std::move(rects);
   }
-  frameDepthValid_ = true;
 
   SyntheticFrame frame;
-  frame.left = layers[0].colour;
-  frame.right = layers[1].colour;
+  frame.left = frame_[0].colour.clone();
+  frame.right = frame_[1].colour.clone();
   FrameTruth& truth = frame.truth;
   truth.index = frameIndex;
   truth.timeS = t;
@@ -172,23 +189,37 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   const ZoneCircle zone(options_.baselineM, head.vergence);
   truth.fixationDistanceM = zone.fixationDistance();
   const Camera left = camera(head, 0);
-  // The room's truth comes from the cache; only pixels the people may have
-  // changed are computed again: those drawn in the left view, and those
-  // whose match in the right view (x - d, with d at most the nearest room
-  // surface's disparity) fell where people were drawn there.
-  truth.disparity = staticTruth_.disparity.clone();
-  truth.inside = staticTruth_.inside.clone();
-  truth.occluded = staticTruth_.occluded.clone();
+  // Only pixels the people may have changed are computed again: those drawn
+  // in the left view, and those whose match in the right view (x - d, with
+  // d at most the largest disparity in the left view) fell where the right
+  // view was drawn. The rest comes from the room's truth (a full frame) or
+  // from the last frame (an incremental one).
+  double maxDisparityPx = maxStaticDisparityPx_;
+  if (incremental) {
+    double minDepth = 0;
+    cv::minMaxLoc(frame_[0].depth, &minDepth);
+    maxDisparityPx = focal_ * options_.baselineM / minDepth;
+  } else {
+    staticTruth_.disparity.copyTo(frameTruth_.disparity);
+    staticTruth_.inside.copyTo(frameTruth_.inside);
+    staticTruth_.occluded.copyTo(frameTruth_.occluded);
+  }
   cv::Rect dirty = drawn[0];
   if (!drawn[1].empty()) {
     cv::Rect shifted = drawn[1];
-    shifted.width += static_cast<int>(std::ceil(maxStaticDisparityPx_)) + 2;
+    shifted.width += static_cast<int>(std::ceil(maxDisparityPx)) + 2;
     dirty = dirty.empty() ? shifted : (dirty | shifted);
   }
-  pixelTruth(left, layers[0], layers[1], options_.baselineM, zone, dirty, truth);
+  pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_);
+  truth.disparity = frameTruth_.disparity.clone();
+  truth.inside = frameTruth_.inside.clone();
+  truth.occluded = frameTruth_.occluded.clone();
+  framePrimitives_ = std::move(prims);
+  frameHead_ = head;
+  frameValid_ = true;
   for (std::size_t i = 0; i < people_.size(); ++i)
     truth.people.push_back(
-        personTruth(left, layers[0], options_.baselineM, zone, people_[i].id, poses[i]));
+        personTruth(left, frame_[0], options_.baselineM, zone, people_[i].id, poses[i]));
   sensorEffects(options_, frameIndex, 0, frame.left);
   sensorEffects(options_, frameIndex, 1, frame.right);
   return frame;
