@@ -24,7 +24,7 @@ RmpBase::RmpBase(std::unique_ptr<CanTransport> transport, RmpBaseOptions options
       throw Error(std::string("cannot talk to the RMP: ") + e.what());
     }
   }
-  if (options_.startThread) thread_ = std::thread([this] { run(); });
+  if (options_.startThread) worker_.start(options_.period, [this] { step(options_.clock()); });
 }
 
 RmpBase::~RmpBase() {
@@ -46,11 +46,7 @@ void RmpBase::emergencyStop() {
     governor_.emergencyStop();
     health_.lastFault = "emergency stop";
   }
-  {
-    std::lock_guard lock(wakeMutex_);
-    kick_ = true;  // send the zero now, not at the next tick
-  }
-  wake_.notify_all();
+  worker_.kick();  // send the zero now, not at the next tick
 }
 
 void RmpBase::releaseEmergencyStop() {
@@ -190,29 +186,8 @@ void RmpBase::step(Clock::time_point now) {
   }
 }
 
-void RmpBase::run() {
-  auto next = Clock::now();
-  while (true) {
-    step(options_.clock());
-    next += options_.period;
-    std::unique_lock lock(wakeMutex_);
-    wake_.wait_until(lock, next, [this] { return stopping_ || kick_; });
-    if (stopping_) break;
-    if (kick_) next = Clock::now();  // an e-stop: send the zero now
-    kick_ = false;
-    if (Clock::now() > next + options_.period) next = Clock::now();  // fell behind: no burst
-  }
-}
-
 void RmpBase::shutdown() {
-  {
-    std::lock_guard lock(wakeMutex_);
-    if (shutDown_) return;
-    shutDown_ = true;
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  if (!worker_.stop()) return;
   std::lock_guard stepLock(stepMutex_);
   try {
     send(rmp::encodeMotion({}, options_.scaling));

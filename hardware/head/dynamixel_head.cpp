@@ -49,7 +49,7 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
     measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
     target_ = measured_->angles;
   }
-  thread_ = std::thread([this] { run(); });
+  worker_.start(options_.period, [this] { guardedCycle(); });
 }
 
 DynamixelHead::~DynamixelHead() {
@@ -253,31 +253,18 @@ void DynamixelHead::cycle() {
   health_.linkUp = true;
 }
 
-void DynamixelHead::run() {
-  auto next = Clock::now();
-  while (true) {
-    try {
-      cycle();
-    } catch (const LinkError& e) {
-      std::lock_guard lock(mutex_);
-      health_.linkUp = false;
-      health_.lastFault = e.what();
-    }
-    next += options_.period;
-    std::unique_lock lock(wakeMutex_);
-    if (wake_.wait_until(lock, next, [this] { return stopping_; })) break;
-    if (Clock::now() > next + options_.period) next = Clock::now();
+void DynamixelHead::guardedCycle() {
+  try {
+    cycle();
+  } catch (const LinkError& e) {
+    std::lock_guard lock(mutex_);
+    health_.linkUp = false;
+    health_.lastFault = e.what();
   }
 }
 
 void DynamixelHead::shutdown() {
-  {
-    std::lock_guard lock(wakeMutex_);
-    if (stopping_) return;
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  if (!worker_.stop()) return;
   // Hold where it is (best effort): the servos keep torque and stop moving.
   try {
     if (!lastTicks_.empty()) {

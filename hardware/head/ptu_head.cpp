@@ -47,7 +47,7 @@ PtuHead::PtuHead(std::unique_ptr<ByteTransport> transport, PtuHeadOptions option
   limits_.vergenceMin = limits_.vergenceMax = 0;
   if (limits_.panMin > limits_.panMax || limits_.tiltMin > limits_.tiltMax)
     throw Error("the requested head limits do not overlap the PTU's own limits");
-  thread_ = std::thread([this] { run(); });
+  worker_.start(options_.period, [this] { guardedCycle(); });
 }
 
 PtuHead::~PtuHead() {
@@ -202,31 +202,18 @@ void PtuHead::cycle() {
   }
 }
 
-void PtuHead::run() {
-  auto next = Clock::now();
-  while (true) {
-    try {
-      cycle();
-    } catch (const LinkError& e) {
-      std::lock_guard lock(mutex_);
-      health_.linkUp = false;
-      health_.lastFault = e.what();
-    }
-    next += options_.period;
-    std::unique_lock lock(wakeMutex_);
-    if (wake_.wait_until(lock, next, [this] { return stopping_; })) break;
-    if (Clock::now() > next + options_.period) next = Clock::now();
+void PtuHead::guardedCycle() {
+  try {
+    cycle();
+  } catch (const LinkError& e) {
+    std::lock_guard lock(mutex_);
+    health_.linkUp = false;
+    health_.lastFault = e.what();
   }
 }
 
 void PtuHead::shutdown() {
-  {
-    std::lock_guard lock(wakeMutex_);
-    if (stopping_) return;
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  if (!worker_.stop()) return;
   try {
     const std::string h = ptu::halt();
     transport_->write(std::span(reinterpret_cast<const std::uint8_t*>(h.data()), h.size()));

@@ -16,15 +16,14 @@
 // with "pan positive turns right" for each eye).
 #pragma once
 
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include "horopter/hardware/dynamixel_protocol.hpp"
 #include "horopter/hardware/head.hpp"
 #include "horopter/hardware/head_health.hpp"
+#include "horopter/hardware/periodic_worker.hpp"
 #include "horopter/hardware/transport.hpp"
 
 namespace horopter::hw {
@@ -65,7 +64,7 @@ class DynamixelHead final : public Head {
 
  private:
   void readServoLimits();
-  void run();
+  void guardedCycle();  // cycle(), a lost link recorded in health
   void cycle();
   std::vector<dxl::Status> exchange(const std::vector<std::uint8_t>& request,
                                     const std::vector<std::uint8_t>& ids);
@@ -90,10 +89,7 @@ class DynamixelHead final : public Head {
   HeadHealth health_;
   int failuresInARow_ = 0;
 
-  std::mutex wakeMutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;
-  std::thread thread_;
+  PeriodicWorker worker_;  // last: stops before the members its cycles use
 };
 
 }  // namespace horopter::hw

@@ -11,14 +11,13 @@
 // or do not parse are retried and counted; "!P"/"!T" limit hits are reported.
 #pragma once
 
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include "horopter/hardware/head.hpp"
 #include "horopter/hardware/head_health.hpp"
+#include "horopter/hardware/periodic_worker.hpp"
 #include "horopter/hardware/ptu_protocol.hpp"
 #include "horopter/hardware/transport.hpp"
 
@@ -59,7 +58,7 @@ class PtuHead final : public Head {
  private:
   std::optional<ptu::Reply> exchange(const std::string& command);
   ptu::Reply require(const std::string& command);  // throws horopter::Error (set-up only)
-  void run();
+  void guardedCycle();                             // cycle(), a lost link recorded in health
   void cycle();
 
   std::unique_ptr<ByteTransport> transport_;
@@ -78,10 +77,7 @@ class PtuHead final : public Head {
   HeadHealth health_;
   int failuresInARow_ = 0;
 
-  std::mutex wakeMutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;
-  std::thread thread_;
+  PeriodicWorker worker_;  // last: stops before the members its cycles use
 };
 
 }  // namespace horopter::hw

@@ -14,14 +14,12 @@
 // step(now) with the time you choose.
 #pragma once
 
-#include <atomic>
-#include <condition_variable>
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "horopter/hardware/base.hpp"
+#include "horopter/hardware/periodic_worker.hpp"
 #include "horopter/hardware/rmp_protocol.hpp"
 #include "horopter/hardware/transport.hpp"
 #include "horopter/hardware/velocity_governor.hpp"
@@ -76,7 +74,6 @@ class RmpBase final : public Base {
   void shutdown();
 
  private:
-  void run();
   void receiveAll(Clock::time_point now);
   void completeSeries(Clock::time_point now);
   void send(const CanFrame& frame);
@@ -93,13 +90,8 @@ class RmpBase final : public Base {
   bool started_ = false;
   bool staleReported_ = false;
   BaseHealth health_;
-  std::mutex stepMutex_;  // one step at a time (thread vs shutdown)
-  std::condition_variable wake_;
-  std::mutex wakeMutex_;
-  bool stopping_ = false;
-  bool kick_ = false;
-  bool shutDown_ = false;
-  std::thread thread_;
+  std::mutex stepMutex_;   // one step at a time (thread vs shutdown)
+  PeriodicWorker worker_;  // last: stops before the members its cycles use
 };
 
 }  // namespace horopter::hw
