@@ -9,6 +9,7 @@
 #include "horopter/error.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/rasteriser.hpp"
+#include "synthetic/rect_cover.hpp"
 #include "synthetic/room.hpp"
 #include "synthetic/scene_renderer.hpp"
 #include "synthetic/truth.hpp"
@@ -149,33 +150,33 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
                            prims.size() == framePrimitives_.size();
   frameValid_ = false;  // until the frame is complete (an exception leaves it so)
   const cv::Rect image(0, 0, options_.width, options_.height);
-  cv::Rect drawn[2];
+  std::vector<cv::Rect> drawn[2];  // per view: disjoint rectangles drawn again
   for (int eye = 0; eye < 2; ++eye) {
     const Camera cam = camera(head, eye);
     Layer& layer = frame_[eye];
     std::vector<cv::Rect> rects(prims.size());
     for (std::size_t i = 0; i < prims.size(); ++i)
-      rects[i] = screenRect(cam, prims[i]);
-    cv::Rect clip = image;
+      rects[i] = screenRect(cam, prims[i]) & image;
     if (incremental) {
-      // Where a changed part was or is now; the room goes back there.
-      clip = {};
-      for (std::size_t i = 0; i < prims.size(); ++i) {
-        if (sameSurface(prims[i], framePrimitives_[i])) continue;
-        for (const cv::Rect& r : {rects[i], frameRects_[eye][i]})
-          if (!r.empty()) clip = clip.empty() ? r : (clip | r);
-      }
-      clip &= image;
-      if (!clip.empty()) {
+      // Where a changed part was or is now: the room goes back there and
+      // every part is drawn again, inside those rectangles only.
+      std::vector<cv::Rect> changed;
+      for (std::size_t i = 0; i < prims.size(); ++i)
+        if (!sameSurface(prims[i], framePrimitives_[i])) {
+          changed.push_back(rects[i]);
+          changed.push_back(frameRects_[eye][i]);
+        }
+      drawn[eye] = disjointCover(std::move(changed));
+      for (const cv::Rect& clip : drawn[eye]) {
         staticLayer_[eye].colour(clip).copyTo(layer.colour(clip));
         staticLayer_[eye].depth(clip).copyTo(layer.depth(clip));
+        synth::render(cam, prims, layer, clip);
       }
     } else {
       staticLayer_[eye].colour.copyTo(layer.colour);
       staticLayer_[eye].depth.copyTo(layer.depth);
+      if (!prims.empty()) drawn[eye] = {synth::render(cam, prims, layer)};
     }
-    if (!prims.empty() && !clip.empty()) drawn[eye] = synth::render(cam, prims, layer, clip);
-    if (incremental) drawn[eye] = clip;
     frameRects_[eye] = std::move(rects);
   }
 
@@ -204,13 +205,13 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
     staticTruth_.inside.copyTo(frameTruth_.inside);
     staticTruth_.occluded.copyTo(frameTruth_.occluded);
   }
-  cv::Rect dirty = drawn[0];
-  if (!drawn[1].empty()) {
-    cv::Rect shifted = drawn[1];
+  std::vector<cv::Rect> dirty = drawn[0];
+  for (cv::Rect shifted : drawn[1]) {
     shifted.width += static_cast<int>(std::ceil(maxDisparityPx)) + 2;
-    dirty = dirty.empty() ? shifted : (dirty | shifted);
+    dirty.push_back(shifted & image);
   }
-  pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_);
+  for (const cv::Rect& r : disjointCover(std::move(dirty)))
+    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, r, frameTruth_);
   truth.disparity = frameTruth_.disparity.clone();
   truth.inside = frameTruth_.inside.clone();
   truth.occluded = frameTruth_.occluded.clone();
