@@ -49,43 +49,6 @@ void Layer::reset(int width, int height) {
   depth.setTo(cv::Scalar::all(std::numeric_limits<double>::infinity()));
 }
 
-namespace {
-
-// A capsule's outline on screen lies within `radius` pixels of the segment
-// between its projected ends (perspective keeps the axis straight). The
-// radius allows for the stretch of a sphere's image off the optical axis
-// (1 / cos^2 of the angle: 1.6 at the corners of a 60 degree view).
-struct ScreenCapsule {
-  bool use = false;
-  double x0 = 0, y0 = 0, dx = 0, dy = 0, len2 = 0, radius2 = 0;
-
-  bool misses(double x, double y) const {
-    const double px = x - x0, py = y - y0;
-    const double s = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0, 1.0) : 0.0;
-    const double ex = px - s * dx, ey = py - s * dy;
-    return ex * ex + ey * ey > radius2;
-  }
-};
-
-ScreenCapsule screenCapsule(const Camera& camera, const Primitive& p) {
-  ScreenCapsule c;
-  if (p.shape != Primitive::Shape::Capsule) return c;
-  const Vec3 a = camera.toCamera(p.a), b = camera.toCamera(p.b);
-  const double zMin = std::min(a.z, b.z) - p.radius;
-  if (zMin < p.radius) return c;  // close to the camera: the rectangle alone
-  c.use = true;
-  c.x0 = camera.cx + camera.f * a.x / a.z;
-  c.y0 = camera.cy + camera.f * a.y / a.z;
-  c.dx = camera.cx + camera.f * b.x / b.z - c.x0;
-  c.dy = camera.cy + camera.f * b.y / b.z - c.y0;
-  c.len2 = c.dx * c.dx + c.dy * c.dy;
-  const double r = 1.7 * camera.f * p.radius / zMin + 2;
-  c.radius2 = r * r;
-  return c;
-}
-
-}  // namespace
-
 cv::Rect screenRect(const Camera& camera, const Primitive& p) {
   if (p.shape == Primitive::Shape::Room) return {0, 0, camera.width, camera.height};
   Vec3 lo, hi;
@@ -101,15 +64,12 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
   for (Primitive& p : primitives)
     prepare(p, camera.centre);
   std::vector<cv::Rect> rects;
-  std::vector<ScreenCapsule> capsules;
   std::vector<std::optional<detail::CapsuleRows>> capsuleRows;
   rects.reserve(primitives.size());
-  capsules.reserve(primitives.size());
   capsuleRows.reserve(primitives.size());
   cv::Rect all;
   for (const Primitive& p : primitives) {
     rects.push_back(screenRect(camera, p) & clip);
-    capsules.push_back(screenCapsule(camera, p));
     capsuleRows.emplace_back();
     if (p.shape == Primitive::Shape::Capsule)
       capsuleRows.back().emplace(p, camera.rigToWorld, camera.f, camera.cx, camera.cy,
@@ -129,7 +89,6 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
       // One pixel loop per shape, so that its ray test is inlined.
       auto loop = [&](auto test) {
         const cv::Rect& r = rects[i];
-        const ScreenCapsule& capsule = capsules[i];
         const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
         const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
         for (int y = y0; y < y1; ++y) {
@@ -150,7 +109,6 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             const int xe = std::min(x1, xb + kBatch);
             int n = 0;
             for (int x = xb; x < xe; ++x) {
-              if (capsule.use && capsule.misses(x, y)) continue;
               Ray& ray = rays[n];
               ray.o = camera.centre;
               ray.d =
