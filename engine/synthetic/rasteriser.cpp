@@ -50,16 +50,30 @@ void Layer::reset(int width, int height) {
 }
 
 cv::Rect screenRect(const Camera& camera, const Primitive& p) {
-  if (p.shape == Primitive::Shape::Room) return {0, 0, camera.width, camera.height};
+  const cv::Rect image(0, 0, camera.width, camera.height);
+  if (p.shape == Primitive::Shape::Room) return image;
   Vec3 lo, hi;
   p.bounds(lo, hi);
-  return camera.screenRect(lo, hi);
+  return camera.screenRect(lo, hi) & image;
+}
+
+void coverage(const Camera& camera, const Primitive& p, RowIntervals& out) {
+  const cv::Rect r = screenRect(camera, p);
+  std::optional<detail::CapsuleRows> spans;
+  if (p.shape == Primitive::Shape::Capsule) {
+    Primitive prepared = p;
+    prepare(prepared, camera.centre);
+    spans.emplace(prepared, camera.rigToWorld, camera.f, camera.cx, camera.cy, camera.width);
+  }
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    int x0 = r.x, x1 = r.x + r.width;
+    if (spans && !spans->span(y, x0, x1)) continue;
+    out.add(y, x0, x1);
+  }
 }
 
 cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer,
-                cv::Rect clip) {
-  const cv::Rect image(0, 0, camera.width, camera.height);
-  clip = clip.empty() ? image : (clip & image);
+                const RowIntervals* only) {
   std::vector<Primitive> primitives = unprepared;
   for (Primitive& p : primitives)
     prepare(p, camera.centre);
@@ -69,7 +83,7 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
   capsuleRows.reserve(primitives.size());
   cv::Rect all;
   for (const Primitive& p : primitives) {
-    rects.push_back(screenRect(camera, p) & clip);
+    rects.push_back(screenRect(camera, p));
     capsuleRows.emplace_back();
     if (p.shape == Primitive::Shape::Capsule)
       capsuleRows.back().emplace(p, camera.rigToWorld, camera.f, camera.cx, camera.cy,
@@ -90,10 +104,9 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
       auto loop = [&](auto test) {
         const cv::Rect& r = rects[i];
         const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
-        const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
-        for (int y = y0; y < y1; ++y) {
-          int x0 = r.x, x1 = r.x + r.width;
-          if (spans && !spans->span(y, x0, x1)) continue;
+        // Pixels x0 <= x < x1 of row y.
+        auto segment = [&](int y, int x0, int x1) {
+          if (x1 <= x0) return;
           auto* colour = layer.colour.ptr<cv::Vec3b>(y);
           auto* depth = layer.depth.ptr<double>(y);
           const double rowY = (y - camera.cy) / camera.f;
@@ -124,6 +137,18 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                             cv::saturate_cast<uchar>(c[2]));
             }
           }
+        };
+        const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
+        for (int y = y0; y < y1; ++y) {
+          if (only && only->row(y).empty()) continue;
+          int x0 = r.x, x1 = r.x + r.width;
+          if (spans && !spans->span(y, x0, x1)) continue;
+          if (!only) {
+            segment(y, x0, x1);
+            continue;
+          }
+          for (const Interval& in : only->row(y))
+            segment(y, std::max(x0, in.x0), std::min(x1, in.x1));
         }
       };
       switch (p.shape) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "synthetic/primitives.hpp"
+#include "synthetic/row_intervals.hpp"
 #include "synthetic/vec3.hpp"
 
 namespace horopter::synth {
@@ -35,15 +36,18 @@ struct Layer {
   void reset(int width, int height);
 };
 
-// The pixels a primitive may draw into: render() casts its rays there only
-// (the whole image for the room).
+// The rectangle of pixels a primitive may draw into (the whole image for the
+// room), within the image.
 cv::Rect screenRect(const Camera& camera, const Primitive& primitive);
+// Adds to `out` the pixels render() casts rays through for `primitive`
+// (per row, a capsule's span within its rectangle): it draws nowhere else.
+void coverage(const Camera& camera, const Primitive& primitive, RowIntervals& out);
 
 // Draws `primitives` over `layer` where they are nearer than what it holds,
-// inside `clip` only (empty: the whole image); returns the union of the pixel
+// inside `only` (nullptr: the whole image); returns the union of the pixel
 // rectangles it looked at. Rows are split across OpenCV's threads; the result
 // does not depend on the split.
 cv::Rect render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer,
-                cv::Rect clip = {});
+                const RowIntervals* only = nullptr);
 
 }  // namespace horopter::synth

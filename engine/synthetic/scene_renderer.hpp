@@ -8,6 +8,7 @@
 #include "synthetic/people.hpp"
 #include "synthetic/primitives.hpp"
 #include "synthetic/rasteriser.hpp"
+#include "synthetic/row_intervals.hpp"
 
 namespace horopter::synth {
 
@@ -34,14 +35,14 @@ class SceneRenderer {
   Layer staticLayer_[2];
   // The last frame, kept to draw the next one incrementally: when the head
   // has not moved, only the rectangles of the people's primitives that
-  // changed (where they were and where they are) are drawn again, over the
+  // changed (where they were and where they are, row by row) are drawn again, over the
   // room, with every primitive; the rest of the image, depth and truth is
   // the same as in the last frame. frameValid_ is false until a full frame
   // is drawn for the current caches.
   Layer frame_[2];
   FrameTruth frameTruth_;
   std::vector<Primitive> framePrimitives_;
-  std::vector<cv::Rect> frameRects_[2];
+  RowIntervals redraw_[2], truthRows_;  // buffers of the incremental frame
   HeadPose frameHead_;
   bool frameValid_ = false;
   bool staticValid_ = false;

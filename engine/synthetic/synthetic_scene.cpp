@@ -2,6 +2,7 @@
 // see include/horopter/synthetic_scene.hpp.
 #include "horopter/synthetic_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -9,7 +10,6 @@
 #include "horopter/error.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/rasteriser.hpp"
-#include "synthetic/rect_cover.hpp"
 #include "synthetic/room.hpp"
 #include "synthetic/scene_renderer.hpp"
 #include "synthetic/truth.hpp"
@@ -150,34 +150,35 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
                            prims.size() == framePrimitives_.size();
   frameValid_ = false;  // until the frame is complete (an exception leaves it so)
   const cv::Rect image(0, 0, options_.width, options_.height);
-  std::vector<cv::Rect> drawn[2];  // per view: disjoint rectangles drawn again
+  cv::Rect drawn[2];  // a full frame: where the people were drawn
   for (int eye = 0; eye < 2; ++eye) {
     const Camera cam = camera(head, eye);
     Layer& layer = frame_[eye];
-    std::vector<cv::Rect> rects(prims.size());
-    for (std::size_t i = 0; i < prims.size(); ++i)
-      rects[i] = screenRect(cam, prims[i]) & image;
     if (incremental) {
       // Where a changed part was or is now: the room goes back there and
-      // every part is drawn again, inside those rectangles only.
-      std::vector<cv::Rect> changed;
+      // every part is drawn again, there only.
+      RowIntervals& redraw = redraw_[eye];
+      redraw.reset(options_.height);
       for (std::size_t i = 0; i < prims.size(); ++i)
         if (!sameSurface(prims[i], framePrimitives_[i])) {
-          changed.push_back(rects[i]);
-          changed.push_back(frameRects_[eye][i]);
+          coverage(cam, prims[i], redraw);
+          coverage(cam, framePrimitives_[i], redraw);
         }
-      drawn[eye] = disjointCover(std::move(changed));
-      for (const cv::Rect& clip : drawn[eye]) {
-        staticLayer_[eye].colour(clip).copyTo(layer.colour(clip));
-        staticLayer_[eye].depth(clip).copyTo(layer.depth(clip));
-        synth::render(cam, prims, layer, clip);
-      }
+      redraw.merge();
+      for (int y = 0; y < options_.height; ++y)
+        for (const Interval& in : redraw.row(y)) {
+          const int n = in.x1 - in.x0;
+          std::copy_n(staticLayer_[eye].colour.ptr<cv::Vec3b>(y) + in.x0, n,
+                      layer.colour.ptr<cv::Vec3b>(y) + in.x0);
+          std::copy_n(staticLayer_[eye].depth.ptr<double>(y) + in.x0, n,
+                      layer.depth.ptr<double>(y) + in.x0);
+        }
+      synth::render(cam, prims, layer, &redraw);
     } else {
       staticLayer_[eye].colour.copyTo(layer.colour);
       staticLayer_[eye].depth.copyTo(layer.depth);
-      if (!prims.empty()) drawn[eye] = {synth::render(cam, prims, layer)};
+      if (!prims.empty()) drawn[eye] = synth::render(cam, prims, layer);
     }
-    frameRects_[eye] = std::move(rects);
   }
 
   SyntheticFrame frame;
@@ -195,23 +196,33 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   // d at most the largest disparity in the left view) fell where the right
   // view was drawn. The rest comes from the room's truth (a full frame) or
   // from the last frame (an incremental one).
-  double maxDisparityPx = maxStaticDisparityPx_;
   if (incremental) {
+    // Left pixels outside the redrawn ones keep their depth, so their
+    // disparity is at most that of the nearest surface in the left view.
     double minDepth = 0;
     cv::minMaxLoc(frame_[0].depth, &minDepth);
-    maxDisparityPx = focal_ * options_.baselineM / minDepth;
+    const int reach = static_cast<int>(std::ceil(focal_ * options_.baselineM / minDepth)) + 2;
+    truthRows_.reset(options_.height);
+    for (int y = 0; y < options_.height; ++y) {
+      for (const Interval& in : redraw_[0].row(y))
+        truthRows_.add(y, in.x0, in.x1);
+      for (const Interval& in : redraw_[1].row(y))
+        truthRows_.add(y, in.x0, std::min(options_.width, in.x1 + reach));
+    }
+    truthRows_.merge();
+    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, truthRows_, frameTruth_);
   } else {
     staticTruth_.disparity.copyTo(frameTruth_.disparity);
     staticTruth_.inside.copyTo(frameTruth_.inside);
     staticTruth_.occluded.copyTo(frameTruth_.occluded);
+    cv::Rect dirty = drawn[0];
+    if (!drawn[1].empty()) {
+      cv::Rect shifted = drawn[1];
+      shifted.width += static_cast<int>(std::ceil(maxStaticDisparityPx_)) + 2;
+      dirty = dirty.empty() ? shifted : (dirty | shifted);
+    }
+    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_);
   }
-  std::vector<cv::Rect> dirty = drawn[0];
-  for (cv::Rect shifted : drawn[1]) {
-    shifted.width += static_cast<int>(std::ceil(maxDisparityPx)) + 2;
-    dirty.push_back(shifted & image);
-  }
-  for (const cv::Rect& r : disjointCover(std::move(dirty)))
-    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, r, frameTruth_);
   truth.disparity = frameTruth_.disparity.clone();
   truth.inside = frameTruth_.inside.clone();
   truth.occluded = frameTruth_.occluded.clone();

@@ -31,38 +31,59 @@ void allocatePixelTruth(int width, int height, FrameTruth& truth) {
   truth.occluded.create(height, width, CV_8UC1);
 }
 
-void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
-                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth) {
+namespace {
+
+// The truth of pixels x0 <= x < x1 of row y.
+void truthSpan(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
+               double baselineM, const ZoneCircle& zone, int y, int x0, int x1, FrameTruth& truth) {
   const int w = left.width;
-  rect &= cv::Rect(0, 0, left.width, left.height);
-  if (rect.empty()) return;
   const double fb16 = 16.0 * left.f * baselineM;
   const double fb = left.f * baselineM;
+  const auto* zl = leftLayer.depth.ptr<double>(y);
+  const auto* zr = rightLayer.depth.ptr<double>(y);
+  auto* disp = truth.disparity.ptr<std::int16_t>(y);
+  auto* in = truth.inside.ptr<std::uint8_t>(y);
+  auto* occ = truth.occluded.ptr<std::uint8_t>(y);
+  for (int x = x0; x < x1; ++x) {
+    const double z = zl[x];
+    // round() by hand (halves away from zero; the value is positive):
+    // without SSE4.1 std::round is a library call.
+    disp[x] = static_cast<std::int16_t>(std::min(32767.0, fb16 / z + 0.5));
+    // The pixel's point in the rig frame (the left camera at x = -B/2).
+    const double px = -0.5 * baselineM + (x - left.cx) * z / left.f;
+    in[x] = zone.inside(px, z) ? 255 : 0;
+    // Seen in the right view when the right pixels around x - d look at
+    // a surface at (nearly) the same depth.
+    const double xr = x - fb / z;
+    const int xf = xr >= 0 ? static_cast<int>(xr) : (xr > -1 ? -1 : -2);  // floor, enough here
+    bool seen = false;
+    for (int xi = xf; xi <= xf + 1; ++xi)
+      if (xi >= 0 && xi < w && std::abs(zr[xi] - z) <= 0.02 * z) seen = true;
+    occ[x] = seen ? 0 : 255;
+  }
+}
+
+}  // namespace
+
+void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
+                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth) {
+  rect &= cv::Rect(0, 0, left.width, left.height);
+  if (rect.empty()) return;
   cv::parallel_for_(cv::Range(rect.y, rect.y + rect.height), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y) {
-      const auto* zl = leftLayer.depth.ptr<double>(y);
-      const auto* zr = rightLayer.depth.ptr<double>(y);
-      auto* disp = truth.disparity.ptr<std::int16_t>(y);
-      auto* in = truth.inside.ptr<std::uint8_t>(y);
-      auto* occ = truth.occluded.ptr<std::uint8_t>(y);
-      for (int x = rect.x; x < rect.x + rect.width; ++x) {
-        const double z = zl[x];
-        // round() by hand (halves away from zero; the value is positive):
-        // without SSE4.1 std::round is a library call.
-        disp[x] = static_cast<std::int16_t>(std::min(32767.0, fb16 / z + 0.5));
-        // The pixel's point in the rig frame (the left camera at x = -B/2).
-        const double px = -0.5 * baselineM + (x - left.cx) * z / left.f;
-        in[x] = zone.inside(px, z) ? 255 : 0;
-        // Seen in the right view when the right pixels around x - d look at
-        // a surface at (nearly) the same depth.
-        const double xr = x - fb / z;
-        const int x0 = xr >= 0 ? static_cast<int>(xr) : (xr > -1 ? -1 : -2);  // floor, enough here
-        bool seen = false;
-        for (int xi = x0; xi <= x0 + 1; ++xi)
-          if (xi >= 0 && xi < w && std::abs(zr[xi] - z) <= 0.02 * z) seen = true;
-        occ[x] = seen ? 0 : 255;
-      }
-    }
+    for (int y = rows.start; y < rows.end; ++y)
+      truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, rect.x, rect.x + rect.width,
+                truth);
+  });
+}
+
+void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
+                double baselineM, const ZoneCircle& zone, const RowIntervals& intervals,
+                FrameTruth& truth) {
+  cv::parallel_for_(cv::Range(0, intervals.height()), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y)
+      for (const Interval& in : intervals.row(y))
+        truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, std::max(in.x0, 0),
+                  std::min(in.x1, left.width), truth);
   });
 }
 

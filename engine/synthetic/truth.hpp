@@ -7,6 +7,7 @@
 #include "horopter/synthetic_scene.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/rasteriser.hpp"
+#include "synthetic/row_intervals.hpp"
 
 namespace horopter::synth {
 
@@ -31,6 +32,10 @@ class ZoneCircle {
 // already have the image's size and types), from the two views' depths.
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
                 double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth);
+// The same inside `rows` (intervals per row of the image).
+void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
+                double baselineM, const ZoneCircle& zone, const RowIntervals& rows,
+                FrameTruth& truth);
 // Allocates the three maps of `truth` for a width x height image.
 void allocatePixelTruth(int width, int height, FrameTruth& truth);
 
