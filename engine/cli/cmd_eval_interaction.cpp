@@ -76,6 +76,9 @@ int runEvalInteraction(Args& args) {
            "  --scope S          region, full or both (default both)\n"
            "  --threads N        threads of the disparity stage (default 1)\n"
            "  --backend B        front end backend (default auto)\n"
+           "  --jobs N           trials run N at a time (default 1); the rates do not depend\n"
+           "                     on it, but fps and e2e fps are then measured with the\n"
+           "                     trials competing for the cores\n"
            "  --write-tracks DIR write each trial's tracked body with the truth to\n"
            "                     DIR/<scope>_<seed>.csv (for horopter classify --track)\n"
            "  --json             one JSON object {\"full\": {...}, \"roi\": {...}}, percentages\n"
@@ -95,6 +98,7 @@ int runEvalInteraction(Args& args) {
   const std::string size = args.stringValue("--size", "640x480");
   options.trial.threads = args.intValue("--threads", 1);
   options.trial.backend = args.stringValue("--backend", "auto");
+  options.jobs = args.intValue("--jobs", 1);
   options.writeTracksDir = args.stringValue("--write-tracks", "");
   const bool json = args.flag("--json");
   const bool requireBetter = args.flag("--require-region-better");
@@ -107,6 +111,7 @@ int runEvalInteraction(Args& args) {
     throw Error("--grace-frames must be within 0..300");
   if (options.trial.threads < 1 || options.trial.threads > 256)
     throw Error("--threads must be within 1..256");
+  if (options.jobs < 1 || options.jobs > 64) throw Error("--jobs must be within 1..64");
   {
     int w = 0, h = 0;
     char x = 0, extra = 0;

@@ -24,7 +24,11 @@ struct InteractionEvalOptions {
   // When set: each trial's tracked body and the truth are written to
   // DIR/<scope>_<seed>.csv (a body track file with the truth column).
   std::string writeTracksDir;
-  // Called after each trial with (scope, trial index, the trial's score).
+  // Trials run this many at a time (1..64). Results do not depend on it, but
+  // frames/s are then measured with the trials competing for the cores.
+  int jobs = 1;
+  // Called after each trial with (scope, trial index, the trial's score); one
+  // call at a time, in order of completion.
   std::function<void(DetectionScope, int, const MovementScore&)> progress;
 };
 
