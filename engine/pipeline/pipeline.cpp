@@ -1,5 +1,6 @@
 // The scheduler: capture on the caller's thread, one lane (thread) per stage,
-// in-flight slots for back-pressure, a one-frame mailbox for live mode.
+// in-flight slots for back-pressure (taken before capture offline, after it
+// live), a one-frame mailbox for live mode.
 #include "horopter/pipeline.hpp"
 
 #include <algorithm>
@@ -92,6 +93,17 @@ class Run {
         stoppedByRequest_ = true;
         break;
       }
+      // Offline, a frame takes its slot before its capture starts: with K in
+      // flight, frame N + K - 1 is captured while frame N is in the stages
+      // (one in flight is one frame at a time, capture included).
+      if (!live) {
+        if (!takeSlot()) break;
+        if (stopRequested()) {
+          stoppedByRequest_ = true;
+          releaseSlot();
+          break;
+        }
+      }
       auto frame = std::make_unique<Frame>();
       frame->index = index;
       const auto t0 = SteadyClock::now();
@@ -99,10 +111,14 @@ class Run {
       try {
         got = source.next(*frame);
       } catch (const std::exception& e) {
+        if (!live) releaseSlot();
         fail("capture", index, e.what());
         return;
       }
-      if (!got) break;
+      if (!got) {
+        if (!live) releaseSlot();
+        break;
+      }
       const auto t1 = SteadyClock::now();
       frame->captured = t1;
       frame->spans.push_back({"capture", t0, t1});
@@ -111,7 +127,7 @@ class Run {
       if (live)
         admitLive(std::move(frame));
       else
-        admitWaiting(std::move(frame));
+        queues_[0].push(std::move(frame));
     }
     // Live mode: the frame left in the mailbox is the newest; let it in.
     std::unique_ptr<Frame> last;
@@ -122,15 +138,18 @@ class Run {
     if (last) admitWaiting(std::move(last));
   }
 
+  // Waits for a free slot and takes it; false when the run was aborted.
+  bool takeSlot() {
+    std::unique_lock lock(slotMutex_);
+    slotFreed_.wait(lock, [&] { return freeSlots_ > 0 || aborted(); });
+    if (aborted()) return false;
+    --freeSlots_;
+    return true;
+  }
+
   // Waits for a free slot, then sends the frame in.
   void admitWaiting(std::unique_ptr<Frame> frame) {
-    {
-      std::unique_lock lock(slotMutex_);
-      slotFreed_.wait(lock, [&] { return freeSlots_ > 0 || aborted(); });
-      if (aborted()) return;
-      --freeSlots_;
-    }
-    queues_[0].push(std::move(frame));
+    if (takeSlot()) queues_[0].push(std::move(frame));
   }
 
   // Sends the frame in if a slot is free; otherwise it waits in the mailbox,

@@ -8,11 +8,14 @@
 // captured. A stage that needs more than one core (the front end) brings its
 // own work: it runs its kernels on the engine's thread pool from its lane.
 //
-// The number of frames in flight (captured and not yet through the last
-// stage) is bounded by PipelineOptions::inFlight: that is the back-pressure.
+// The number of frames in flight is bounded by PipelineOptions::inFlight:
+// that is the back-pressure.
 //
-//   Offline mode: capture waits for a free slot; every frame is processed, in
-//     order. Stage outputs depend only on the frame and on the frames before
+//   Offline mode: a frame is in flight from the start of its capture to the
+//     end of the last stage; capture waits for a free slot before it starts
+//     (one in flight: one frame at a time, capture included; three: frame
+//     N + 2 is captured while N + 1 and N are in the stages). Every frame is
+//     processed, in order. Stage outputs depend only on the frame and on the frames before
 //     it, so they are the same whatever the thread count or depth in flight.
 //   Live mode: capture never waits. When every slot is taken, the newest
 //     captured frame waits in a one-frame mailbox and replaces (drops) the one
