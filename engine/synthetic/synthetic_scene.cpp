@@ -89,7 +89,12 @@ SceneRenderer::SceneRenderer(const SceneOptions& options)
       room_(room::build(options.content == SceneContent::Full, options.skinClutter)),
       people_(options.content == SceneContent::Full
                   ? makePeople(options.seed, options.distractor, options.personDistanceM)
-                  : std::vector<PersonParams>{}) {}
+                  : std::vector<PersonParams>{}) {
+  // The room for the initial pose now, as a camera opens before its first
+  // frame: a run's first frame then costs what the others do.
+  updateStatic(options.initialHead);
+  updateStaticTruth(options.initialHead);
+}
 
 Camera SceneRenderer::camera(const HeadPose& head, int eye) const {
   Camera c;
