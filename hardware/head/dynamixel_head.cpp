@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "head/guarded_cycle.hpp"
+
 namespace horopter::hw {
 
 DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, DynamixelHeadOptions options)
@@ -49,7 +51,7 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
     measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
     target_ = measured_->angles;
   }
-  worker_.start(options_.period, [this] { guardedCycle(); });
+  worker_.start(options_.period, [this] { runGuardedCycle([this] { cycle(); }, mutex_, health_); });
 }
 
 DynamixelHead::~DynamixelHead() {
@@ -251,16 +253,6 @@ void DynamixelHead::cycle() {
   measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
   failuresInARow_ = 0;
   health_.linkUp = true;
-}
-
-void DynamixelHead::guardedCycle() {
-  try {
-    cycle();
-  } catch (const LinkError& e) {
-    std::lock_guard lock(mutex_);
-    health_.linkUp = false;
-    health_.lastFault = e.what();
-  }
 }
 
 void DynamixelHead::shutdown() {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "head/guarded_cycle.hpp"
+
 namespace horopter::hw {
 
 namespace {
@@ -47,7 +49,7 @@ PtuHead::PtuHead(std::unique_ptr<ByteTransport> transport, PtuHeadOptions option
   limits_.vergenceMin = limits_.vergenceMax = 0;
   if (limits_.panMin > limits_.panMax || limits_.tiltMin > limits_.tiltMax)
     throw Error("the requested head limits do not overlap the PTU's own limits");
-  worker_.start(options_.period, [this] { guardedCycle(); });
+  worker_.start(options_.period, [this] { runGuardedCycle([this] { cycle(); }, mutex_, health_); });
 }
 
 PtuHead::~PtuHead() {
@@ -198,16 +200,6 @@ void PtuHead::cycle() {
     health_.linkUp = true;
   } catch (const Error& e) {
     ++health_.corruptReplies;
-    health_.lastFault = e.what();
-  }
-}
-
-void PtuHead::guardedCycle() {
-  try {
-    cycle();
-  } catch (const LinkError& e) {
-    std::lock_guard lock(mutex_);
-    health_.linkUp = false;
     health_.lastFault = e.what();
   }
 }

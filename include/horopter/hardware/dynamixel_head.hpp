@@ -64,7 +64,6 @@ class DynamixelHead final : public Head {
 
  private:
   void readServoLimits();
-  void guardedCycle();  // cycle(), a lost link recorded in health
   void cycle();
   std::vector<dxl::Status> exchange(const std::vector<std::uint8_t>& request,
                                     const std::vector<std::uint8_t>& ids);

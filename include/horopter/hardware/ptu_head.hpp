@@ -58,7 +58,6 @@ class PtuHead final : public Head {
  private:
   std::optional<ptu::Reply> exchange(const std::string& command);
   ptu::Reply require(const std::string& command);  // throws horopter::Error (set-up only)
-  void guardedCycle();                             // cycle(), a lost link recorded in health
   void cycle();
 
   std::unique_ptr<ByteTransport> transport_;
