@@ -1,10 +1,16 @@
-// Calibration files (written by `horopter calibrate`), the rectified
-// geometry they give, and rectification of captured pairs.
+// Calibration from chessboard views (what `horopter calibrate` does), the
+// calibration files, the rectified geometry they give, and rectification of
+// captured pairs.
+#include <pybind11/stl.h>
+
 #include <mutex>
+#include <string>
+#include <vector>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "horopter/calibration.hpp"
+#include "horopter/error.hpp"
 
 namespace horopter::python {
 
@@ -16,6 +22,60 @@ py::object matrix(const cv::Mat& m) {
   cv::Mat d;
   m.convertTo(d, CV_64F);
   return shareMat(d);
+}
+
+cv::Size boardSize(const py::sequence& innerCorners) {
+  if (innerCorners.size() != 2)
+    throw Error("inner_corners takes (corners per row, corners per column), e.g. (9, 6)");
+  const cv::Size size(innerCorners[0].cast<int>(), innerCorners[1].cast<int>());
+  if (size.width < 2 || size.height < 2)
+    throw Error("inner_corners must be at least (2, 2), got (" + std::to_string(size.width) + ", " +
+                std::to_string(size.height) + ")");
+  return size;
+}
+
+// A grey or BGR image from Python, as a Mat over its memory.
+cv::Mat boardImage(py::handle image, const std::string& what) {
+  return matOver(inputView(image, {PixelType::U8C1, PixelType::U8C3}, what));
+}
+
+// findBoardCorners: an (N, 2) float32 array, or None where the whole board
+// is not in view.
+py::object findCorners(py::handle image, const py::sequence& innerCorners) {
+  const cv::Mat m = boardImage(image, "image");
+  const cv::Size size = boardSize(innerCorners);
+  std::vector<cv::Point2f> corners;
+  {
+    py::gil_scoped_release release;
+    corners = findBoardCorners(m, size);
+  }
+  if (corners.empty()) return py::none();
+  cv::Mat points(static_cast<int>(corners.size()), 2, CV_32F, corners.data());
+  return shareMat(points.clone());
+}
+
+// detectBoards + calibrateStereo over lists of images (same order: pair i
+// is lefts[i] and rights[i]).
+StereoCalibration calibrate(const py::sequence& lefts, const py::sequence& rights,
+                            double squareSize, const py::sequence& innerCorners, int minViews,
+                            double alpha) {
+  if (lefts.size() != rights.size())
+    throw Error("calibrate: " + std::to_string(lefts.size()) + " left images but " +
+                std::to_string(rights.size()) + " right images; give them in pairs");
+  BoardSpec board;
+  board.innerCorners = boardSize(innerCorners);
+  board.squareSize = squareSize;
+  CalibrationOptions options;
+  options.minViews = minViews;
+  options.alpha = alpha;
+  std::vector<StereoImagePair> pairs;
+  for (std::size_t i = 0; i < lefts.size(); ++i) {
+    const std::string name = "pair " + std::to_string(i);
+    pairs.push_back({name, boardImage(lefts[i], name + " left image"),
+                     boardImage(rights[i], name + " right image")});
+  }
+  py::gil_scoped_release release;
+  return calibrateStereo(detectBoards(pairs, board.innerCorners), board, options);
 }
 
 py::tuple rect(const cv::Rect& r) {
@@ -81,6 +141,7 @@ void bindCalibration(py::module_& m) {
       .def_readonly("rms_right", &StereoCalibration::rmsRight)
       .def_readonly("epipolar_error", &StereoCalibration::epipolarError)
       .def_readonly("homography_error", &StereoCalibration::homographyError)
+      .def_readonly("skipped", &StereoCalibration::skipped)
       .def_property_readonly("views", [](const StereoCalibration& c) {
         py::list out;
         for (const ViewError& v : c.views) {
@@ -93,6 +154,18 @@ void bindCalibration(py::module_& m) {
         return out;
       });
 
+  m.def("find_board_corners", &findCorners, py::arg("image"),
+        py::arg("inner_corners") = py::make_tuple(9, 6),
+        "The chessboard's inner corners in an image (grey or BGR uint8), refined to sub-pixel "
+        "accuracy, as an (N, 2) float32 array in OpenCV's row-major order; None when the "
+        "whole board is not found");
+  m.def("calibrate", &calibrate, py::arg("lefts"), py::arg("rights"), py::arg("square_size"),
+        py::arg("inner_corners") = py::make_tuple(9, 6), py::arg("min_views") = 5,
+        py::arg("alpha") = 0.0,
+        "A StereoCalibration from pairs of chessboard views (lists of images, pair i = "
+        "lefts[i], rights[i]); square_size sets the unit of every length (metres give "
+        "metres). Pairs where the board is not found in both images are skipped and named "
+        "in .skipped; fewer than min_views usable pairs is a horopter.Error");
   m.def("load_calibration", &loadStereoCalibration, py::arg("path"),
         "Reads a calibration file (OpenCV YAML/XML, as `horopter calibrate` writes)");
   m.def("save_calibration", &saveStereoCalibration, py::arg("calibration"), py::arg("path"));

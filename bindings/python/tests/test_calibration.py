@@ -57,3 +57,45 @@ def test_bad_files_say_what_is_wrong(tmp_path):
     bad.write_text("%YAML:1.0\n---\nimage_size: [1, 2]\n")
     with pytest.raises(horopter.Error):
         horopter.load_calibration(str(bad))
+
+
+def _views(side):
+    paths = sorted(glob.glob(os.path.join(VIEWS, f"{side}[0-9][0-9].jpg")))
+    if not paths:
+        pytest.skip(f"opencv-doc's chessboard views are not in {VIEWS} (apt-get install opencv-doc)")
+    return [horopter.imread(p, grey=True) for p in paths]
+
+
+def test_find_board_corners():
+    image = _views("left")[0]
+    corners = horopter.find_board_corners(image, (9, 6))
+    assert corners.shape == (54, 2) and corners.dtype == np.float32
+    h, w = image.shape
+    assert (corners[:, 0] >= 0).all() and (corners[:, 0] < w).all()
+    assert (corners[:, 1] >= 0).all() and (corners[:, 1] < h).all()
+    # A board that is not there: no corners, not an error.
+    assert horopter.find_board_corners(np.zeros((120, 160), np.uint8), (9, 6)) is None
+    with pytest.raises(horopter.Error, match="inner_corners"):
+        horopter.find_board_corners(image, (1, 6))
+
+
+def test_calibrate_from_images_matches_the_cli(calib_file):
+    lefts, rights = _views("left"), _views("right")
+    calib = horopter.calibrate(lefts, rights, square_size=0.025, inner_corners=(9, 6))
+    assert calib.image_size == (640, 480)
+    assert 0 < calib.rms < 2
+    assert len(calib.views) + len(calib.skipped) == len(lefts)
+    # The same views through `horopter calibrate` give the same baseline.
+    cli = horopter.load_calibration(str(calib_file))
+    assert horopter.rectified_geometry(calib).baseline == pytest.approx(
+        horopter.rectified_geometry(cli).baseline, rel=1e-6)
+
+
+def test_calibrate_says_what_is_wrong():
+    lefts, rights = _views("left"), _views("right")
+    with pytest.raises(horopter.Error, match="in pairs"):
+        horopter.calibrate(lefts, rights[:-1], square_size=0.025)
+    with pytest.raises(horopter.Error):
+        horopter.calibrate(lefts[:2], rights[:2], square_size=0.025)  # too few views
+    with pytest.raises(horopter.Error):
+        horopter.calibrate(lefts, rights, square_size=-1.0)
