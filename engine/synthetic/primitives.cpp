@@ -120,31 +120,4 @@ bool intersect(const Primitive& p, const Ray& ray, double tMax, Hit& hit) {
   return false;
 }
 
-cv::Vec3f shade(const Primitive& p, const Ray& ray, const Hit& hit, double pixelMetres) {
-  const Material& m = p.materials[hit.face];
-  // Light from above, behind the robot and to its left (y is down).
-  static const Vec3 kToLight = normalized(Vec3{-0.35, -0.8, -0.5});
-  const double lambert = std::max(0.0, dot(hit.normal, kToLight));
-  const float light = static_cast<float>(0.55 + 0.55 * lambert);
-  // Metres covered by one pixel at this depth (ignoring slant).
-  const double footprintM = hit.t * pixelMetres;
-  const Texture& tex = texture(m.texture);
-  cv::Vec3f c;
-  switch (m.mapping) {
-    case Material::Mapping::Tiled:
-      c = tex.sampleWrap(hit.u * m.texelsPerMetre, hit.v * m.texelsPerMetre,
-                         footprintM * m.texelsPerMetre);
-      break;
-    case Material::Mapping::Stretch:
-      c = tex.sampleClamp(hit.u * tex.width(), hit.v * tex.height(), footprintM * m.texelsPerMetre);
-      break;
-    case Material::Mapping::Face:
-      if (hit.back) return m.gain * light;
-      c = tex.sampleClamp(hit.u * tex.width(), hit.v * tex.height(), footprintM * m.texelsPerMetre);
-      return c * light;
-  }
-  (void)ray;
-  return cv::Vec3f(c[0] * m.gain[0], c[1] * m.gain[1], c[2] * m.gain[2]) * light;
-}
-
 }  // namespace horopter::synth

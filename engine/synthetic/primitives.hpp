@@ -76,10 +76,6 @@ struct Hit {
 // The nearest hit with tMin < t < tMax, or false; `p` prepared for ray.o.
 bool intersect(const Primitive& p, const Ray& ray, double tMax, Hit& hit);
 
-// The colour (BGR floats) of a hit, lit by a fixed directional light; the
-// lighting depends on the surface only, never on the viewpoint, so both views
-// see the same colour at the same surface point. `pixelMetres`: the size of a
-// pixel's footprint at unit depth (1 / f).
-cv::Vec3f shade(const Primitive& p, const Ray& ray, const Hit& hit, double pixelMetres);
+// shade(): synthetic/shading.hpp.
 
 }  // namespace horopter::synth

@@ -3,6 +3,7 @@
 
 #include "synthetic/capsule_rows.hpp"
 #include "synthetic/intersections.hpp"
+#include "synthetic/shading.hpp"
 
 #include <opencv2/core/utility.hpp>
 

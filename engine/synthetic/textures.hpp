@@ -56,3 +56,5 @@ const Texture& texture(TextureId id);
 std::vector<TextureSource> loadedTextureSources();
 
 }  // namespace horopter::synth
+
+#include "synthetic/texture_sampling.hpp"  // IWYU pragma: export

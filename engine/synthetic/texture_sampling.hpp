@@ -1,0 +1,112 @@
+// Texture sampling, inline so that the rasteriser's pixel loops can inline
+// it (included by textures.hpp; see Texture there).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace horopter::synth {
+
+namespace texture_detail {
+
+// Texture coordinates stay far inside the int range: scenes are metres wide
+// and textures a few hundred texels per metre.
+inline int fastFloor(double v) {
+  const int i = static_cast<int>(v);
+  return v < i ? i - 1 : i;
+}
+
+// log2 within 0.09 without a library call: the exponent plus the mantissa's
+// linear part; plenty to choose a mipmap level (monotonic and continuous).
+inline double fastLog2(double v) {
+  int e = 0;
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  e = static_cast<int>((bits >> 52) & 0x7FF) - 1023;
+  bits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;  // mantissa in [1, 2)
+  double m;
+  std::memcpy(&m, &bits, sizeof m);
+  return e + (m - 1);
+}
+
+inline int wrapIndex(int i, int n) {
+  if ((n & (n - 1)) == 0) return i & (n - 1);  // power of two (two's complement)
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+}  // namespace texture_detail
+
+template <bool Wrap>
+inline cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
+  const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
+  // 2^-level, exact (std::ldexp is a library call per sample).
+  static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
+                                       0.0625,     0.03125,     0.015625,     0.0078125,
+                                       0.00390625, 0.001953125, 0.0009765625, 0.00048828125};
+  const double scale = level < 12 ? kScales[level] : std::ldexp(1.0, -level);
+  // Texel centres sit at integer coordinates of each level.
+  u = u * scale - 0.5;
+  v = v * scale - 0.5;
+  const int w = img.cols, h = img.rows;
+  int x0, y0, x1, y1;
+  float fx, fy;
+  if constexpr (Wrap) {
+    // floor without a libm call (no SSE4.1 in the baseline build)
+    const int iu = texture_detail::fastFloor(u), iv = texture_detail::fastFloor(v);
+    fx = static_cast<float>(u - iu);
+    fy = static_cast<float>(v - iv);
+    x0 = texture_detail::wrapIndex(iu, w);
+    y0 = texture_detail::wrapIndex(iv, h);
+    x1 = x0 + 1 == w ? 0 : x0 + 1;
+    y1 = y0 + 1 == h ? 0 : y0 + 1;
+  } else {
+    u = std::clamp(u, 0.0, w - 1.0);
+    v = std::clamp(v, 0.0, h - 1.0);
+    x0 = static_cast<int>(u);
+    y0 = static_cast<int>(v);
+    x1 = std::min(x0 + 1, w - 1);
+    y1 = std::min(y0 + 1, h - 1);
+    fx = static_cast<float>(u - x0);
+    fy = static_cast<float>(v - y0);
+  }
+  // Bilinear, channel by channel in plain floats (the same operations as
+  // cv::Vec3f's, which the compiler did not keep in registers).
+  const float* a = img.ptr<float>(y0) + 3 * x0;
+  const float* b = img.ptr<float>(y0) + 3 * x1;
+  const float* c = img.ptr<float>(y1) + 3 * x0;
+  const float* d = img.ptr<float>(y1) + 3 * x1;
+  const float gx = 1 - fx, gy = 1 - fy;
+  cv::Vec3f out;
+  for (int k = 0; k < 3; ++k) {
+    const float top = a[k] * gx + b[k] * fx;
+    const float bottom = c[k] * gx + d[k] * fx;
+    out[k] = top * gy + bottom * fy;
+  }
+  return out;
+}
+
+template <bool Wrap>
+inline cv::Vec3f Texture::sample(double u, double v, double footprint) const {
+  const int last = static_cast<int>(levels_.size()) - 1;
+  const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
+  if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
+  if (lod >= last) return sampleLevel<Wrap>(last, u, v);
+  const int l0 = static_cast<int>(lod);
+  const float f = static_cast<float>(lod - l0);
+  const cv::Vec3f a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);
+  const float g = 1 - f;
+  return cv::Vec3f(a[0] * g + b[0] * f, a[1] * g + b[1] * f, a[2] * g + b[2] * f);
+}
+
+inline cv::Vec3f Texture::sampleWrap(double u, double v, double footprint) const {
+  return sample<true>(u, v, footprint);
+}
+
+inline cv::Vec3f Texture::sampleClamp(double u, double v, double footprint) const {
+  return sample<false>(u, v, footprint);
+}
+
+}  // namespace horopter::synth
