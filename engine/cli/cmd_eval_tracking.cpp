@@ -50,14 +50,19 @@ const char* kEvalTrackingHelp =
     "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
     "  --no-head-control  the head stays still (open loop)\n"
     "  --full-search-every N  search the whole region (or image) for faces every Nth frame\n"
-    "                     and only around the previous frame's faces in between (default 1:\n"
-    "                     every frame; 5 is faster but lost more hands on held-out trials)\n"
+    "                     and only around the previous frame's faces in between, searching\n"
+    "                     everywhere when a face is not found again (default 5; 1: every frame)\n"
+    "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
+    "                     to 0.7 m; nearer hands have no disparity, so no zone)\n"
+    "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
+    "                     sizes the zone's disparities allow (slower; for comparison)\n"
     "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
     "                     below the full image's (for tests)\n"
     "  --stills DIR       write every 10th frame of each run, annotated (run's view, with the\n"
     "                     truth's head and hands as white crosses) to DIR\n"
     "  --diagnose         count, per part, why it was lost: the first of no-godfather,\n"
-    "                     barely-visible, outside-mask, face-neck-cut, merged, no-skin,\n"
+    "                     barely-visible, no-disparity, outside-mask, face-neck-cut, merged, "
+    "no-skin,\n"
     "                     removed (no detection near the truth), filtered, no-track, swapped,\n"
     "                     elsewhere (a detection there, the track not); with -v, one line\n"
     "                     per lost part on stderr\n"
@@ -110,7 +115,10 @@ int runEvalTracking(Args& args) {
   base.tracker.election.releaseS = args.doubleValue("--release-s", base.tracker.election.releaseS);
   const std::string formula = args.stringValue("--head-formula", "atan2");
   base.headControl = !args.flag("--no-head-control");
-  base.detector.fullSearchEvery = args.intValue("--full-search-every", 1);
+  base.detector.fullSearchEvery =
+      args.intValue("--full-search-every", base.detector.fullSearchEvery);
+  base.stereo.numDisparities = args.intValue("--num-disparities", base.stereo.numDisparities);
+  if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");
   const bool verbose = args.flag("--verbose") || args.flag("-v");
@@ -121,6 +129,8 @@ int runEvalTracking(Args& args) {
   if (seed < 0) throw Error("--seed must be >= 0");
   if (base.frames < 1) throw Error("--frames must be >= 1");
   if (base.detector.fullSearchEvery < 1) throw Error("--full-search-every must be >= 1");
+  if (base.stereo.numDisparities < 16 || base.stereo.numDisparities % 16 != 0)
+    throw Error("--num-disparities must be a positive multiple of 16");
   if (base.threads < 1 || base.threads > 256) throw Error("--threads must be in 1..256");
   if (scope != "region" && scope != "full" && scope != "both")
     throw Error("--scope takes region, full or both, got '" + scope + "'");

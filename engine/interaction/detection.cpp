@@ -6,6 +6,8 @@
 #include <opencv2/objdetect.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "horopter/error.hpp"
@@ -16,12 +18,93 @@ const char* detectionScopeName(DetectionScope scope) {
   return scope == DetectionScope::HoropterRegion ? "horopter-region" : "full-image";
 }
 
+namespace {
+// Face widths the zone's depths allow, pixels.
+struct FaceSizeRange {
+  int minPx = 0, maxPx = 0;
+  bool valid() const { return minPx > 0 && maxPx >= minPx; }
+};
+
+// The median valid disparity (px) in `box`, where `mask` (if any) is set;
+// 0 when none.
+double medianDisparity(const cv::Mat& disparity, const cv::Mat& mask, cv::Rect box, int step,
+                       std::vector<std::int16_t>& scratch) {
+  scratch.clear();
+  box &= cv::Rect(0, 0, disparity.cols, disparity.rows);
+  for (int y = box.y; y < box.y + box.height; y += step) {
+    const auto* row = disparity.ptr<std::int16_t>(y);
+    const auto* in = mask.empty() ? nullptr : mask.ptr<std::uint8_t>(y);
+    for (int x = box.x; x < box.x + box.width; x += step)
+      if (row[x] > 0 && (!in || in[x])) scratch.push_back(row[x]);
+  }
+  if (scratch.empty()) return 0;
+  auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
+  std::nth_element(scratch.begin(), mid, scratch.end());
+  return *mid / 16.0;
+}
+
+constexpr std::size_t kWidthSamples = 15;  // faces remembered for k
+constexpr std::size_t kMinWidthSamples = 3;
+
+}  // namespace
+
 struct Detector::Impl {
   cv::CascadeClassifier cascade;
-  cv::Mat grey, skin, grown, labels, stats, centroids;
+  cv::Mat grey, skin, grown, labels, stats, centroids, distance;
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
   std::vector<cv::Rect> followed;  // the previous frame's faces
   int sinceFullSearch = 0;         // frames since the last full search
+  // Face width / disparity (px per px) of the last faces found in the zone.
+  std::vector<float> widthPerDisparity;
+  std::size_t nextSample = 0;
+  std::vector<std::int16_t> depths;  // scratch
+
+  // A face's width is k times its disparity (k: the face's width in metres
+  // over the baseline); each face found in the zone is a sample of k.
+  void learnFaceWidthPerDisparity(const Frame& frame, const std::vector<FaceDetection>& faces) {
+    if (frame.disparity.empty() || frame.disparity.type() != CV_16SC1) return;
+    for (const FaceDetection& f : faces) {
+      if (!f.insideZone) continue;
+      const cv::Rect centre(f.box.x + f.box.width / 4, f.box.y + f.box.height / 4, f.box.width / 2,
+                            f.box.height / 2);
+      const double disparity = medianDisparity(frame.disparity, cv::Mat(), centre, 2, depths);
+      if (!(disparity > 1)) continue;
+      const auto k = static_cast<float>(f.width / disparity);
+      if (widthPerDisparity.size() < kWidthSamples)
+        widthPerDisparity.push_back(k);
+      else
+        widthPerDisparity[nextSample++ % kWidthSamples] = k;
+    }
+  }
+
+  // The face widths the zone's disparities allow over `roi`, once k is known:
+  // from the near end of the zone's depths to its far end, with a margin.
+  FaceSizeRange faceSizesFromDepth(const Frame& frame, const cv::Rect& roi,
+                                   const DetectorOptions& o) {
+    if (widthPerDisparity.size() < kMinWidthSamples || frame.disparity.empty() ||
+        frame.disparity.type() != CV_16SC1 || frame.disparity.size() != frame.mask.size())
+      return {};
+    std::vector<float> ks = widthPerDisparity;
+    std::nth_element(ks.begin(), ks.begin() + static_cast<std::ptrdiff_t>(ks.size() / 2), ks.end());
+    const double k = ks[ks.size() / 2];
+    // The zone's disparities, sampled every 4th pixel.
+    depths.clear();
+    for (int y = roi.y; y < roi.y + roi.height; y += 4) {
+      const auto* row = frame.disparity.ptr<std::int16_t>(y);
+      const auto* in = frame.mask.ptr<std::uint8_t>(y);
+      for (int x = roi.x; x < roi.x + roi.width; x += 4)
+        if (row[x] > 0 && in[x]) depths.push_back(row[x]);
+    }
+    if (depths.size() < 16) return {};
+    auto at = [&](double q) {
+      auto it = depths.begin() + static_cast<std::ptrdiff_t>(q * (depths.size() - 1));
+      std::nth_element(depths.begin(), it, depths.end());
+      return *it / 16.0;
+    };
+    const double far = at(o.depthFacePercentiles[0]), near = at(o.depthFacePercentiles[1]);
+    return {static_cast<int>(std::floor(k * far / o.depthFaceMargin)),
+            static_cast<int>(std::ceil(k * near * o.depthFaceMargin))};
+  }
 };
 
 namespace {
@@ -51,6 +134,10 @@ Detector::Detector(DetectorOptions options)
   if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10))
     throw Error("fullSearchEvery must be >= 1 and followMarginFaces within 0..10");
   if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
+  if (!(o.depthFacePercentiles[0] >= 0 && o.depthFacePercentiles[0] <= o.depthFacePercentiles[1] &&
+        o.depthFacePercentiles[1] <= 1) ||
+      !(o.depthFaceMargin >= 1))
+    throw Error("depth face sizes need percentiles 0 <= far <= near <= 1 and a margin >= 1");
   if (o.minFacePx != 0 && o.minFacePx < 20)
     throw Error(
         "the smallest face must be >= 20 px (the cascade's window), or 0 for a 16th of the width");
@@ -108,11 +195,24 @@ Detections Detector::detect(const Frame& frame) {
 
   // Faces: the cascade is unsteady on a face at the border of its image, so
   // the region's rectangle gets half the smallest face of margin.
-  const int minFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, frame.left.cols / 16);
+  int minFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, frame.left.cols / 16);
+  int maxFaceAny = 0;  // 0: no limit
+  double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
+  // In the region, the zone's depths bound the faces' sizes (width = k d,
+  // k learnt from the faces found so far): fewer pyramid levels. (Scaling
+  // the image down to the smallest size allowed was faster still, but the
+  // cascade then missed faces: on tuning seed 5009 it lost the face for
+  // good.)
+  const FaceSizeRange depthSizes =
+      region && o.depthFaceSizes ? m.faceSizesFromDepth(frame, roi, o) : FaceSizeRange{};
+  if (depthSizes.valid()) {
+    minFace = std::max(minFace, depthSizes.minPx);
+    maxFaceAny = std::max(minFace, depthSizes.maxPx);
+  }
+  d.faceSizes = cv::Size(minFace, maxFaceAny);
   const int pad = region ? minFace / 2 : 0;
   const cv::Rect faceRoi =
       cv::Rect(roi.x - pad, roi.y - pad, roi.width + 2 * pad, roi.height + 2 * pad) & image;
-  const double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
   const int minSize = std::max(20, cvRound(minFace * scale));
   std::vector<cv::Rect> boxes;  // image coordinates
   // The cascade over `area` (image coordinates) for faces up to maxFace px wide (0: any).
@@ -121,6 +221,7 @@ Detections Detector::detect(const Frame& frame) {
     cv::cvtColor(colour(area), m.grey, cv::COLOR_BGR2GRAY);
     if (scale != 1) cv::resize(m.grey, m.grey, cv::Size(), scale, scale, cv::INTER_AREA);
     std::vector<cv::Rect> found;
+    if (maxFaceAny > 0) maxFace = maxFace > 0 ? std::min(maxFace, maxFaceAny) : maxFaceAny;
     const int maxSize = maxFace > 0 ? std::max(minSize, cvRound(maxFace * scale)) : 0;
     m.cascade.detectMultiScale(m.grey, found, o.scaleFactor, o.minNeighbors, 0,
                                cv::Size(minSize, minSize), cv::Size(maxSize, maxSize));
@@ -129,7 +230,10 @@ Detections Detector::detect(const Frame& frame) {
       boxes.emplace_back(cvRound(b.x * k) + area.x, cvRound(b.y * k) + area.y, cvRound(b.width * k),
                          cvRound(b.height * k));
   };
+  // Whether a box the cascade found is kept (the region keeps the zone's).
+  auto kept = [&](const cv::Rect& b) { return !region || zoneCover(frame.mask, b) >= 0.3; };
   const bool follow = !m.followed.empty() && m.sinceFullSearch + 1 < o.fullSearchEvery;
+  bool searchAll = !follow;
   if (follow) {
     ++m.sinceFullSearch;
     for (const cv::Rect& f : m.followed) {
@@ -148,25 +252,34 @@ Detections Detector::detect(const Frame& frame) {
       if (!seen) unique.push_back(b);
     }
     boxes = std::move(unique);
-  } else {
+    // A followed face not found again: this frame searches everywhere after
+    // all (the cascade is unsteady on small windows; a frame without the
+    // face would cost its hands too).
+    if (static_cast<std::size_t>(std::count_if(boxes.begin(), boxes.end(), kept)) <
+        m.followed.size()) {
+      boxes.clear();
+      searchAll = true;
+    }
+  }
+  if (searchAll) {
     m.sinceFullSearch = 0;
     search(faceRoi, 0);
   }
+  d.fullFaceSearch = searchAll;
   for (const cv::Rect& b : boxes) {
     FaceDetection f;
     f.box = b;
     f.centre = cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height);
     f.width = static_cast<float>(b.width);
     f.insideZone = zoneCover(frame.mask, b) >= 0.3;
-    if (region && !f.insideZone) continue;  // the region holds the zone only
+    if (!kept(b)) continue;  // the region holds the zone only
     d.faces.push_back(f);
   }
-  // Followed next frame; a face lost here brings a full search next frame.
-  const bool lostOne = follow && d.faces.size() < m.followed.size();
+  if (region && o.depthFaceSizes) m.learnFaceWidthPerDisparity(frame, d.faces);
+  // Followed next frame.
   m.followed.clear();
-  if (!lostOne)
-    for (const FaceDetection& f : d.faces)
-      m.followed.push_back(f.box);
+  for (const FaceDetection& f : d.faces)
+    m.followed.push_back(f.box);
   std::sort(d.faces.begin(), d.faces.end(), [](const FaceDetection& a, const FaceDetection& b) {
     return std::tie(a.box.x, a.box.y, a.box.width) < std::tie(b.box.x, b.box.y, b.box.width);
   });
@@ -184,11 +297,43 @@ Detections Detector::detect(const Frame& frame) {
   if (!m.openKernel.empty()) cv::morphologyEx(m.skin, m.skin, cv::MORPH_OPEN, m.openKernel);
   if (!m.closeKernel.empty()) cv::morphologyEx(m.skin, m.skin, cv::MORPH_CLOSE, m.closeKernel);
   const int n = cv::connectedComponentsWithStats(m.skin, m.labels, m.stats, m.centroids, 8, CV_32S);
+  cv::distanceTransform(m.skin, m.distance, cv::DIST_L2, 3);
+  std::vector<float> radius(static_cast<std::size_t>(n), 0.f);
+  // Region: whether each skin pixel really lies at its disparity (the left
+  // and right grey levels agree there). Block matching gives a strip of wall
+  // beside the silhouette the person's disparity; at the pixel the wall's
+  // texture then disagrees.
+  const bool stereo = region && !frame.disparity.empty() && frame.disparity.type() == CV_16SC1 &&
+                      frame.disparity.size() == frame.left.size() &&
+                      frame.leftGrey.size() == frame.left.size() &&
+                      frame.rightGrey.size() == frame.left.size() &&
+                      frame.leftGrey.type() == CV_8UC1 && frame.rightGrey.type() == CV_8UC1;
+  std::vector<int> agree(static_cast<std::size_t>(n), 0), measured(static_cast<std::size_t>(n), 0);
+  for (int y = 0; y < m.skin.rows; ++y) {
+    const auto* l = m.labels.ptr<int>(y);
+    const auto* dist = m.distance.ptr<float>(y);
+    const std::int16_t* disp = stereo ? frame.disparity.ptr<std::int16_t>(y + roi.y) : nullptr;
+    const std::uint8_t* lg = stereo ? frame.leftGrey.ptr<std::uint8_t>(y + roi.y) : nullptr;
+    const std::uint8_t* rg = stereo ? frame.rightGrey.ptr<std::uint8_t>(y + roi.y) : nullptr;
+    for (int x = 0; x < m.skin.cols; ++x) {
+      if (l[x] <= 0) continue;
+      radius[l[x]] = std::max(radius[l[x]], dist[x]);
+      if (!stereo || disp[x + roi.x] <= 0) continue;
+      const int xr = x + roi.x - (disp[x + roi.x] + 8) / 16;
+      if (xr < 0) continue;
+      ++measured[l[x]];
+      if (std::abs(int(lg[x + roi.x]) - int(rg[xr])) <= o.stereoAgreeGrey) ++agree[l[x]];
+    }
+  }
   for (int i = 1; i < n; ++i) {
     const int area = m.stats.at<int>(i, cv::CC_STAT_AREA);
     if (area < o.minHandAreaPx) continue;
     HandDetection h;
     h.areaPx = area;
+    h.radiusPx = radius[static_cast<std::size_t>(i)];
+    if (measured[static_cast<std::size_t>(i)] > 0)
+      h.stereoAgreement = static_cast<float>(agree[static_cast<std::size_t>(i)]) /
+                          measured[static_cast<std::size_t>(i)];
     h.box = cv::Rect(m.stats.at<int>(i, cv::CC_STAT_LEFT) + roi.x,
                      m.stats.at<int>(i, cv::CC_STAT_TOP) + roi.y,
                      m.stats.at<int>(i, cv::CC_STAT_WIDTH), m.stats.at<int>(i, cv::CC_STAT_HEIGHT));

@@ -15,6 +15,8 @@ const char* lossCauseName(LossCause cause) {
       return "no-godfather";
     case LossCause::BarelyVisible:
       return "barely-visible";
+    case LossCause::NoDisparity:
+      return "no-disparity";
     case LossCause::OutsideMask:
       return "outside-mask";
     case LossCause::FaceNeckCut:
@@ -100,6 +102,10 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
           f.mask.empty() ? 0 : discFraction(f.mask.size(), at, r, [&](int x, int y) {
             return f.mask.at<std::uint8_t>(y, x) != 0;
           });
+      const double valid =
+          f.disparity.empty() ? 0 : discFraction(f.disparity.size(), at, r, [&](int x, int y) {
+            return f.disparity.at<std::int16_t>(y, x) > 0;
+          });
       bool cut = false, merged = false;
       if (f.detections) {
         for (const FaceDetection& d : f.detections->faces) {
@@ -118,6 +124,8 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
           });
       if (part != 0 && shown < 1.0 / 3)
         cause = LossCause::BarelyVisible;
+      else if (region && masked < 1.0 / 3 && valid < 0.5)
+        cause = LossCause::NoDisparity;
       else if (region && masked < 1.0 / 3)
         cause = LossCause::OutsideMask;
       else if (part != 0 && cut)
@@ -161,7 +169,8 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
                    f.body.head.image.y, main.faceWidthPx);
       if (f.detections)
         for (const HandDetection& d : f.detections->hands)
-          std::fprintf(log, " (%.0f, %.0f a%d)", d.centroid.x, d.centroid.y, d.areaPx);
+          std::fprintf(log, " (%.0f, %.0f a%d r%.0f s%.2f)", d.centroid.x, d.centroid.y, d.areaPx,
+                       d.radiusPx, d.stereoAgreement);
       std::fprintf(log, " | truth L (%.0f, %.0f) R (%.0f, %.0f)\n", main.leftHand2d.x,
                    main.leftHand2d.y, main.rightHand2d.x, main.rightHand2d.y);
     }

@@ -51,6 +51,12 @@ void validate(const TrackerOptions& o) {
   if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > o.minHandAreaFaces) ||
       o.minHandAreaFaces < 0)
     throw Error("tracker coast time must be >= 0 s, reach and hand area > 0");
+  if (!(o.minHandRadiusFaces >= 0) || !(o.crossFaceWidths >= 0) || !(o.solidHandAreaFaces >= 0) ||
+      !(o.solidHandRadiusFaces >= 0) || !(o.headBlobFaceWidths >= 0))
+    throw Error(
+        "tracker hand radius, crossing, solid-hand and head-blob limits must be >= 0 face widths");
+  if (!(o.minStereoAgreement >= 0 && o.minStereoAgreement <= 1))
+    throw Error("tracker minStereoAgreement must be a fraction in [0, 1]");
   if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
     throw Error("tracker framesPerSecond must be positive");
 }
@@ -106,10 +112,24 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       const double d = m.head->distance2(f.centre);
       if (!best || d < bestD) best = &f, bestD = d;
     }
+    // The cascade missed the face: its skin blob (face and neck, large and
+    // round, near the prediction) keeps the head's track.
+    const HandDetection* blob = nullptr;
+    if (!best && o.headBlobFaceWidths > 0) {
+      const double fw = std::max(1.0f, m.faceWidth);
+      for (const HandDetection& c : det.hands)
+        if (cv::norm(c.centroid - m.head->position()) <= o.headBlobFaceWidths * fw &&
+            c.areaPx >= 0.3 * fw * fw && c.radiusPx >= 0.2 * fw &&
+            (!blob || c.areaPx > blob->areaPx))
+          blob = &c;
+    }
     if (best) {
       m.head->update(best->centre);
       m.faceWidth = best->width;
       seenInside = best->insideZone;
+    } else if (blob) {
+      m.head->update(blob->centroid);
+      seenInside = blob->insideZone;
     } else {
       m.head->dampVelocity(o.coastVelocityDamping);
     }
@@ -137,10 +157,21 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     const cv::Point2f h = m.head->position();
     const double fw = std::max(1.0f, m.faceWidth);
     std::vector<const HandDetection*> candidates;
+    // The face and neck themselves, where the detector missed the face this
+    // frame (it cuts them out around the faces it finds).
+    auto faceOrNeck = [&](cv::Point2f c) {
+      return std::abs(c.x - h.x) <= 0.5 * fw && c.y - h.y >= -0.6 * fw && c.y - h.y <= 1.2 * fw;
+    };
     for (const HandDetection& c : det.hands)
-      if (cv::norm(c.centroid - h) <= o.reachFaceWidths * fw &&
-          c.areaPx <= o.maxHandAreaFaces * fw * fw && c.areaPx >= o.minHandAreaFaces * fw * fw)
+      if (!faceOrNeck(c.centroid) && cv::norm(c.centroid - h) <= o.reachFaceWidths * fw &&
+          c.areaPx <= o.maxHandAreaFaces * fw * fw && c.areaPx >= o.minHandAreaFaces * fw * fw &&
+          c.radiusPx >= o.minHandRadiusFaces * fw && c.stereoAgreement >= o.minStereoAgreement)
         candidates.push_back(&c);
+    // Whether candidate j may be hand k: not far on the other hand's side.
+    auto onSide = [&](int k, std::size_t j) {
+      const double side = k == 0 ? 1.0 : -1.0;  // the person's left hand is on the image's right
+      return (candidates[j]->centroid.x - h.x) * side >= -o.crossFaceWidths * fw;
+    };
     std::vector<bool> taken(candidates.size(), false);
     struct Pair {
       double d2;
@@ -151,7 +182,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     for (int k = 0; k < 2; ++k)
       if (m.hands[k])
         for (std::size_t j = 0; j < candidates.size(); ++j)
-          if (m.hands[k]->inGate(candidates[j]->centroid) &&
+          if (onSide(k, j) && m.hands[k]->inGate(candidates[j]->centroid) &&
               cv::norm(candidates[j]->centroid - m.hands[k]->position()) <=
                   o.maxHandStepFaceWidths * fw)
             pairs.push_back({m.hands[k]->distance2(candidates[j]->centroid), k, j});
@@ -159,11 +190,36 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       return std::tie(a.d2, a.track, a.candidate) < std::tie(b.d2, b.track, b.candidate);
     });
     bool updated[2] = {false, false};
+    std::size_t assigned[2] = {candidates.size(), candidates.size()};
     for (const Pair& p : pairs) {
       if (updated[p.track] || taken[p.candidate]) continue;
       m.hands[p.track]->update(candidates[p.candidate]->centroid);
       m.lastSeen[p.track] = candidates[p.candidate]->centroid;
       updated[p.track] = taken[p.candidate] = true;
+      assigned[p.track] = p.candidate;
+    }
+    // A track held by a weak candidate (a speck of clutter it fell onto when
+    // the hand outran its gate), or by none, moves to a free solid one on
+    // its side: a whole hand is both larger and rounder than the specks.
+    auto solid = [&](std::size_t j) {
+      return candidates[j]->areaPx >= o.solidHandAreaFaces * fw * fw &&
+             candidates[j]->radiusPx >= o.solidHandRadiusFaces * fw;
+    };
+    for (int k = 0; k < 2 && o.solidHandAreaFaces > 0; ++k) {
+      if (!m.hands[k] || (updated[k] && solid(assigned[k]))) continue;
+      std::size_t best = candidates.size();
+      double bestD = 0;
+      for (std::size_t j = 0; j < candidates.size(); ++j) {
+        if (taken[j] || !onSide(k, j) || !solid(j)) continue;
+        const double d = cv::norm(candidates[j]->centroid - m.hands[k]->position());
+        if (best == candidates.size() || d < bestD) best = j, bestD = d;
+      }
+      if (best == candidates.size()) continue;
+      if (updated[k]) taken[assigned[k]] = false;
+      m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
+      m.lastSeen[k] = candidates[best]->centroid;
+      updated[k] = taken[best] = true;
+      assigned[k] = best;
     }
     // A hand that left its gate (hands start and stop faster than any
     // constant-velocity model expects) is taken up again at the free
@@ -174,7 +230,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       double bestD = o.reacquireFaceWidths * fw;
       for (std::size_t j = 0; j < candidates.size(); ++j) {
         const double d = cv::norm(candidates[j]->centroid - m.lastSeen[k]);
-        if (!taken[j] && d <= bestD) best = j, bestD = d;
+        if (!taken[j] && onSide(k, j) && d <= bestD) best = j, bestD = d;
       }
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);

@@ -41,15 +41,23 @@ struct DetectorOptions {
   // Following: between full searches of the region (one every
   // fullSearchEvery frames), the cascade looks only around the faces of the
   // previous frame, in a window followMarginFaces face widths wider on each
-  // side, for faces at most twice as wide; a frame that loses a face is
-  // followed by a full search. Most frames then slide the cascade over a few
-  // hundred windows instead of the whole region. 1 (the default): a full
-  // search every frame. With 5, `horopter run --detect region` spent 23.5
-  // instead of 37.4 ms per frame in detection, but on 20 held-out trials
-  // (eval-tracking --seed 1000 --frames 200) the region's tracker loss rose
-  // from 30.7 % to 36.0 % (hands lost with their face).
-  int fullSearchEvery = 1;
+  // side, for faces at most twice as wide; a face not found again there
+  // brings a full search in the same frame, so following never loses a face
+  // a full search would have found. 1: a full search every frame. (Before
+  // that fallback, following every 5th frame raised the region's loss on 20
+  // held-out trials from 30.7 to 36.0 %; with it, on the 20 tuning trials
+  // of eval-tracking --seed 5000 --frames 200 --scope region, 5 against 1
+  // gave 12.01 against 11.77 % loss for 27.9 against 47.1 ms of detection.)
+  int fullSearchEvery = 5;
   double followMarginFaces = 1.0;
+  // Region: faces sized by depth. A face's width in pixels is k times its
+  // disparity (k = its width in metres over the baseline), learnt from the
+  // faces found so far (the median of the last 15; 3 needed); the cascade
+  // then looks only for widths from k d_far / margin to k d_near * margin,
+  // d_far and d_near the zone's disparity percentiles below.
+  bool depthFaceSizes = true;
+  double depthFacePercentiles[2] = {0.1, 0.9};
+  double depthFaceMargin = 1.4;
   // Region: the mask is closed with a disc this wide (0: not), then eroded
   // by maskErodePx: block matching fattens the foreground by about half its
   // block, so a rim of the background behind the silhouette (skin-coloured
@@ -60,6 +68,7 @@ struct DetectorOptions {
   int openPx = 5;          // morphological opening of the skin mask (removes speckle, thin strips)
   int closePx = 7;         // closing (joins a hand's pieces)
   int minHandAreaPx = 40;  // smallest skin component kept as a hand candidate
+  int stereoAgreeGrey = 12;  // grey levels within which left and right agree (HandDetection)
   // The face rectangle grown by this fraction of its width, and down by
   // neckFraction of its height, is not a hand (face and neck skin).
   double faceMargin = 0.3;
@@ -78,6 +87,15 @@ struct HandDetection {
   cv::Rect box;
   int areaPx = 0;
   bool insideZone = false;  // the centroid lies in the (eroded) mask
+  // The radius of the largest disc inside the component (the distance
+  // transform's maximum): a hand is a disc about 0.3 face widths across, while
+  // the slivers of skin-coloured wall that block matching's fattened
+  // silhouette lets into the zone are a few pixels thick, however long.
+  float radiusPx = 0;
+  // Region: the fraction of its pixels whose left and right grey levels
+  // agree (within DetectorOptions::stereoAgreeGrey) at their disparity; 1
+  // where not measured (full image, no disparity).
+  float stereoAgreement = 1;
 };
 
 // The body triangle of one person. Left and right are the person's own.
@@ -98,6 +116,8 @@ struct Detections {
   // (the person's left hand appears on the image's right).
   std::optional<BodyTriangle> triangle;
   cv::Rect searched;                // the rectangle the detectors ran over
+  cv::Size faceSizes;               // the face widths searched, px (height 0: no upper limit)
+  bool fullFaceSearch = true;       // faces searched over the whole region (not only followed)
   std::int64_t searchedPixels = 0;  // pixels the skin model classified
 };
 

@@ -38,6 +38,26 @@ struct TrackerOptions {
   double reachFaceWidths = 7;
   double minHandAreaFaces = 0.05;
   double maxHandAreaFaces = 1.0;
+  // ... and the largest disc inside it at least this many face widths in
+  // radius (a hand's is about 0.2 once opened; slivers of wall let in by the
+  // fattened silhouette are a few pixels thick).
+  double minHandRadiusFaces = 0.09;
+  // ... and, where measured (the region), most of its pixels agreeing
+  // between the views at their disparity (HandDetection::stereoAgreement).
+  double minStereoAgreement = 0.7;
+  // A solid hand candidate: at least this area (squared face widths) and
+  // inscribed radius (face widths). A track on a weaker candidate, or on
+  // none, moves to a free solid one on its side (0: never).
+  double solidHandAreaFaces = 0.12;
+  double solidHandRadiusFaces = 0.15;
+  // When the cascade misses the face, the head's track follows the largest
+  // round skin blob (at least 0.3 squared face widths, radius 0.2) within
+  // this many face widths of its prediction (0: it coasts).
+  double headBlobFaceWidths = 0.5;
+  // A hand's track takes no candidate further than this many face widths
+  // across the head's vertical to the other hand's side (a circle or a
+  // wave crosses the midline by about half a face width).
+  double crossFaceWidths = 0.6;
   // The frame's time: index / framesPerSecond (deterministic, for recorded
   // and synthetic input) or, with captureTime, the capture timestamps.
   double framesPerSecond = 30;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <opencv2/imgproc.hpp>
+
 #include "horopter/detection.hpp"
 #include "horopter/error.hpp"
 #include "horopter/synthetic_scene.hpp"
@@ -90,6 +92,98 @@ TEST(Detection, FollowingFindsTheFaceAFullSearchFinds) {
       EXPECT_TRUE(near(a.faces[i].centre, b.faces[i].centre, 0.25 * b.faces[i].width))
           << "frame " << index << ": " << a.faces[i].box << " vs " << b.faces[i].box;
   }
+}
+
+// Faces sized by depth: once a few faces have given the width per
+// disparity, the cascade searches only the sizes the zone's disparities
+// allow, and still finds the face.
+TEST(Detection, FacesSizedByDepthStillFound) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  Detector detector(DetectorOptions{});
+  for (int index = 100; index < 106; ++index) {
+    Frame frame = renderedFrame(index);
+    const auto& truth = std::any_cast<const synth::FrameTruth&>(frame.truth);
+    frame.disparity = truth.disparity;
+    const Detections d = detector.detect(frame);
+    ASSERT_EQ(d.faces.size(), 1u) << "frame " << index;
+    EXPECT_TRUE(near(d.faces[0].centre, truth.people[0].head2d, 0.5 * truth.people[0].faceWidthPx));
+    if (index >= 103) {
+      ASSERT_GT(d.faceSizes.height, 0) << "no size limit after " << index - 100 << " faces";
+      EXPECT_LE(d.faceSizes.width, d.faces[0].width);
+      EXPECT_GE(d.faceSizes.height, d.faces[0].width);
+    }
+  }
+}
+
+// A skin disc on a textured background, rendered as a stereo pair: where the
+// disparity map is right the views agree on the disc; where it claims the
+// disc is nearer than it is (block matching's fattened silhouette), they do
+// not. Its inscribed radius is the disc's.
+TEST(Detection, HandCandidatesCarryStereoAgreementAndRadius) {
+  if (!std::filesystem::exists(kDefaultFaceCascade)) GTEST_SKIP() << "opencv-data missing";
+  const int w = 200, h = 120;
+  cv::Mat texture(h, w + 40, CV_8UC3);
+  cv::RNG rng(7);
+  rng.fill(texture, cv::RNG::UNIFORM, cv::Scalar(20, 20, 20), cv::Scalar(90, 90, 90));
+  // Skin chroma with a strong texture in brightness (the chroma of a colour
+  // scaled by f stays in the skin box for f in 0.6..1.2).
+  cv::Mat skin(h, w + 40, CV_8UC3);
+  for (int y = 0; y < skin.rows; ++y)
+    for (int x = 0; x < skin.cols; ++x) {
+      const double f = rng.uniform(0.6, 1.2);
+      skin.at<cv::Vec3b>(y, x) = cv::Vec3b(cv::saturate_cast<std::uint8_t>(110 * f),
+                                           cv::saturate_cast<std::uint8_t>(140 * f),
+                                           cv::saturate_cast<std::uint8_t>(200 * f));
+    }
+  // The scene seen from the left at x: the disc A at disparity 12, the disc B
+  // (a patch of the far wall) and the background at disparity 2.
+  const cv::Point a(60, 60), b(150, 60);
+  const int r = 15;
+  Frame frame;
+  frame.left.create(h, w, CV_8UC3);
+  frame.right.create(h, w, CV_8UC3);
+  frame.disparity.create(h, w, CV_16SC1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool inA = cv::norm(cv::Point(x, y) - a) <= r, inB = cv::norm(cv::Point(x, y) - b) <= r;
+      frame.left.at<cv::Vec3b>(y, x) =
+          (inA || inB) ? skin.at<cv::Vec3b>(y, x + 20) : texture.at<cv::Vec3b>(y, x + 20);
+      // B claims disparity 12 although it lies at 2.
+      frame.disparity.at<std::int16_t>(y, x) =
+          static_cast<std::int16_t>(16 * (inA || inB ? 12 : 2));
+    }
+  // The right view: each left pixel x at disparity d shows at x - d.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // What the right camera sees at x: A where x + 12 is in A, else the
+      // background and B (both at disparity 2) at x + 2.
+      const bool aHere = cv::norm(cv::Point(x + 12, y) - a) <= r;
+      const bool bHere = cv::norm(cv::Point(x + 2, y) - b) <= r;
+      frame.right.at<cv::Vec3b>(y, x) = aHere   ? skin.at<cv::Vec3b>(y, x + 12 + 20)
+                                        : bHere ? skin.at<cv::Vec3b>(y, x + 2 + 20)
+                                                : texture.at<cv::Vec3b>(y, x + 2 + 20);
+    }
+  cv::cvtColor(frame.left, frame.leftGrey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(frame.right, frame.rightGrey, cv::COLOR_BGR2GRAY);
+  frame.mask = cv::Mat(h, w, CV_8UC1, cv::Scalar(255));
+  DetectorOptions o;
+  o.minFacePx = 40;
+  const Detections d = Detector(o).detect(frame);
+  const HandDetection *onA = nullptr, *onB = nullptr;
+  for (const HandDetection& c : d.hands) {
+    if (near(c.centroid, a, 3)) onA = &c;
+    if (near(c.centroid, b, 3)) onB = &c;
+  }
+  ASSERT_TRUE(onA && onB) << d.hands.size() << " candidates";
+  EXPECT_GT(onA->stereoAgreement, 0.9f);
+  EXPECT_LT(onB->stereoAgreement, 0.5f);
+  // The eroded zone (4 px at 200 wide: 1 px) leaves the disc nearly whole.
+  EXPECT_NEAR(onA->radiusPx, r, 3);
+  // Over the full image nothing is measured.
+  o.scope = DetectionScope::FullImage;
+  for (const HandDetection& c : Detector(o).detect(frame).hands)
+    EXPECT_EQ(c.stereoAgreement, 1.0f);
 }
 
 TEST(Detection, BadInputIsAnError) {

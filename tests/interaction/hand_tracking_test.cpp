@@ -1,0 +1,170 @@
+// The tracker's choice of hand candidates on hand-made detections: a hand's
+// track keeps to its side of the head, slivers (thin, or not where their
+// disparity says) are not hands, a track on a speck moves to the whole hand,
+// and the head follows its skin blob when the face is missed.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "horopter/error.hpp"
+#include "horopter/tracking.hpp"
+
+namespace horopter {
+namespace {
+
+constexpr float kFace = 60;  // face width, px
+const cv::Point2f kHead(320, 120);
+
+// A candidate; areaPx 0: the disc's area.
+HandDetection hand(cv::Point2f at, float radiusPx = 12, float agreement = 1, int areaPx = 0) {
+  HandDetection h;
+  h.centroid = at;
+  h.areaPx = areaPx > 0 ? areaPx : static_cast<int>(3.14f * radiusPx * radiusPx);
+  h.box = cv::Rect(cvRound(at.x - radiusPx), cvRound(at.y - radiusPx), cvRound(2 * radiusPx),
+                   cvRound(2 * radiusPx));
+  h.radiusPx = radiusPx;
+  h.stereoAgreement = agreement;
+  h.insideZone = true;
+  return h;
+}
+
+Frame frameWith(std::int64_t index, std::vector<HandDetection> hands) {
+  auto d = std::make_shared<Detections>();
+  FaceDetection f;
+  f.centre = kHead;
+  f.width = kFace;
+  f.box = cv::Rect(cvRound(kHead.x - kFace / 2), cvRound(kHead.y - kFace / 2), cvRound(kFace),
+                   cvRound(kFace));
+  f.insideZone = true;
+  d->faces.push_back(f);
+  d->hands = std::move(hands);
+  Frame frame;
+  frame.index = index;
+  frame.detections = d;
+  return frame;
+}
+
+TrackerOptions immediateElection() {
+  TrackerOptions o;
+  o.election.electS = 0;
+  return o;
+}
+
+// The person's left hand is on the image's right of the head.
+const cv::Point2f kLeftRest(kHead.x + 1.4f * kFace, kHead.y + 4.3f * kFace);
+const cv::Point2f kRightRest(kHead.x - 1.4f * kFace, kHead.y + 4.3f * kFace);
+
+bool near(cv::Point2f a, cv::Point2f b, float tolerance = 3) {
+  return cv::norm(a - b) <= tolerance;
+}
+
+TEST(HandTracking, BothHandsStartOnTheirOwnSides) {
+  BodyTracker tracker(immediateElection());
+  BodySample body;
+  tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+  ASSERT_TRUE(body.godfather);
+  ASSERT_TRUE(body.leftHand.tracked && body.rightHand.tracked);
+  EXPECT_TRUE(near(body.leftHand.image, kLeftRest));
+  EXPECT_TRUE(near(body.rightHand.image, kRightRest));
+}
+
+// A hand that disappears does not jump to the other side of the body, even
+// to a candidate inside its gate: the left hand's track coasts instead of
+// taking a candidate far on the image's left.
+TEST(HandTracking, AHandsTrackDoesNotCrossToTheOtherSide) {
+  TrackerOptions o = immediateElection();
+  o.reacquireFaceWidths = 10;  // everything would be within reach
+  o.maxHandStepFaceWidths = 10;
+  BodyTracker tracker(o);
+  BodySample body;
+  // The left hand rests just right of the head's vertical.
+  const cv::Point2f left(kHead.x + 0.3f * kFace, kHead.y + 3 * kFace);
+  tracker.update(frameWith(0, {hand(left), hand(kRightRest)}), body);
+  ASSERT_TRUE(near(body.leftHand.image, left));
+  // Next frame the left hand is gone; a blob appears a face width left of the head.
+  const cv::Point2f across(kHead.x - 1.0f * kFace, kHead.y + 3 * kFace);
+  tracker.update(frameWith(1, {hand(across), hand(kRightRest)}), body);
+  ASSERT_TRUE(body.leftHand.tracked);
+  EXPECT_FALSE(body.leftHand.observed) << "the left hand took a candidate on the right's side";
+  EXPECT_GT(body.leftHand.image.x, kHead.x);
+  EXPECT_TRUE(near(body.rightHand.image, kRightRest));
+}
+
+TEST(HandTracking, ThinSliversAndStereoMismatchesAreNotHands) {
+  BodyTracker tracker(immediateElection());
+  BodySample body;
+  // Only a thin sliver (a hand's area, 3 px thick) where the left hand rests,
+  // and a blob whose pixels disagree between the views where the right one
+  // rests.
+  const HandDetection sliver = hand(kLeftRest, 3, 1, 450);
+  tracker.update(frameWith(0, {sliver, hand(kRightRest, 12, 0.3f)}), body);
+  EXPECT_FALSE(body.leftHand.tracked);
+  EXPECT_FALSE(body.rightHand.tracked);
+  // The real hands arrive.
+  tracker.update(frameWith(1, {sliver, hand(kLeftRest + cv::Point2f(10, 0)),
+                               hand(kRightRest, 12, 0.3f), hand(kRightRest + cv::Point2f(0, 8))}),
+                 body);
+  ASSERT_TRUE(body.leftHand.tracked && body.rightHand.tracked);
+  EXPECT_TRUE(near(body.leftHand.image, kLeftRest + cv::Point2f(10, 0)));
+  EXPECT_TRUE(near(body.rightHand.image, kRightRest + cv::Point2f(0, 8)));
+}
+
+// A track that fell onto a speck (small, thin) when its hand outran the gate
+// moves to the whole hand, a solid candidate on its side.
+TEST(HandTracking, ATrackOnASpeckMovesToTheSolidHand) {
+  BodyTracker tracker(immediateElection());
+  BodySample body;
+  const cv::Point2f speck(kHead.x + 1.2f * kFace, kHead.y + 0.9f * kFace);
+  // Only the speck (0.06 face widths squared, radius 0.1) on the left's side.
+  const HandDetection small = hand(speck, 0.1f * kFace, 1, static_cast<int>(0.06f * kFace * kFace));
+  tracker.update(frameWith(0, {small, hand(kRightRest)}), body);
+  ASSERT_TRUE(body.leftHand.tracked);
+  ASSERT_TRUE(near(body.leftHand.image, speck));
+  // The hand appears far from the speck, beyond any gate.
+  const cv::Point2f raised(kHead.x + 3.0f * kFace, kHead.y - 1.0f * kFace);
+  tracker.update(frameWith(1, {small, hand(raised), hand(kRightRest)}), body);
+  EXPECT_TRUE(near(body.leftHand.image, raised)) << body.leftHand.image;
+  EXPECT_TRUE(near(body.rightHand.image, kRightRest));
+}
+
+// When the cascade misses the face, the head's track follows the face's
+// skin blob instead of coasting away (and the godfather is kept).
+TEST(HandTracking, TheHeadFollowsItsSkinBlobWhenTheFaceIsMissed) {
+  TrackerOptions o = immediateElection();
+  o.coastS = 0.05;  // two frames without the head would drop it
+  BodyTracker tracker(o);
+  BodySample body;
+  tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+  ASSERT_TRUE(body.head.tracked);
+  for (int i = 1; i <= 6; ++i) {
+    Frame f = frameWith(
+        i, {hand(kHead + cv::Point2f(0, 6), 0.35f * kFace), hand(kLeftRest), hand(kRightRest)});
+    auto d = std::make_shared<Detections>(*f.detections);
+    d->faces.clear();
+    f.detections = d;
+    tracker.update(f, body);
+    ASSERT_TRUE(body.godfather && body.head.tracked) << "frame " << i;
+    EXPECT_TRUE(body.head.observed);
+    EXPECT_TRUE(near(body.head.image, kHead + cv::Point2f(0, 6), 4)) << body.head.image;
+  }
+  EXPECT_TRUE(near(body.leftHand.image, kLeftRest)) << "the face blob is not a hand";
+  EXPECT_TRUE(near(body.rightHand.image, kRightRest));
+}
+
+TEST(HandTracking, BadOptionsAreErrors) {
+  TrackerOptions o;
+  o.minHandRadiusFaces = -1;
+  EXPECT_THROW(BodyTracker{o}, Error);
+  o = TrackerOptions{};
+  o.crossFaceWidths = -0.1;
+  EXPECT_THROW(BodyTracker{o}, Error);
+  o = TrackerOptions{};
+  o.minStereoAgreement = 1.5;
+  EXPECT_THROW(BodyTracker{o}, Error);
+  o = TrackerOptions{};
+  o.headBlobFaceWidths = -1;
+  EXPECT_THROW(BodyTracker{o}, Error);
+}
+
+}  // namespace
+}  // namespace horopter
