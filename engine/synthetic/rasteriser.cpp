@@ -1,6 +1,7 @@
 // The per-pixel ray caster; see rasteriser.hpp.
 #include "synthetic/rasteriser.hpp"
 
+#include "synthetic/capsule_pairs.hpp"
 #include "synthetic/capsule_rows.hpp"
 #include "synthetic/intersections.hpp"
 #include "synthetic/shading.hpp"
@@ -122,13 +123,18 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
           for (int xb = x0; xb < x1; xb += kBatch) {
             const int xe = std::min(x1, xb + kBatch);
             int n = 0;
-            for (int x = xb; x < xe; ++x) {
-              Ray& ray = rays[n];
-              ray.o = camera.centre;
-              ray.d =
-                  camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-              if (!test(p, ray, depth[x], hits[n])) continue;
-              xs[n++] = x;
+            if (p.shape == Primitive::Shape::Capsule) {
+              n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays, hits,
+                                         xs);
+            } else {
+              for (int x = xb; x < xe; ++x) {
+                Ray& ray = rays[n];
+                ray.o = camera.centre;
+                ray.d =
+                    camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
+                if (!test(p, ray, depth[x], hits[n])) continue;
+                xs[n++] = x;
+              }
             }
             for (int k = 0; k < n; ++k) {
               const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
