@@ -88,7 +88,8 @@ const char* kRunHelp =
     "  --threads N        threads of the front end's pool (default: all cores)\n"
     "  --in-flight K      frames in flight, 1..64 (default 3); offline, a frame counts from\n"
     "                     the start of its capture (1: one frame at a time; 3: frame N + 2\n"
-    "                     is captured while N + 1 and N are in the stages)\n"
+    "                     is captured while N + 1 and N are in the stages; with more than\n"
+    "                     one, the synthetic scene renders on the capture thread alone)\n"
     "  --live             live mode: capture never waits, stale frames are dropped\n"
     "                     (default for cameras; offline, every frame in order, otherwise)\n"
     "  --until STAGE      run only up to rectify, disparity or mask (for profiling; no\n"
@@ -192,6 +193,10 @@ RunJob parseRun(Args& args) {
   const bool camera = job.source.rfind("camera:", 0) == 0 || job.source.rfind("sbs:", 0) == 0;
   if (camera && !job.liveGiven) job.live = true;
   job.capture.frames = job.frames;
+  // With frames in flight the other cores work on the frames ahead, so the
+  // synthetic scene renders on the capture thread alone rather than adding
+  // OpenCV's threads beside the front end's pool (oversubscribed cores).
+  if (job.inFlight > 1) job.capture.scene.threads = 1;
   return job;
 }
 

@@ -75,7 +75,7 @@ void coverage(const Camera& camera, const Primitive& p, RowIntervals& out) {
 }
 
 cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer,
-                const RowIntervals* only) {
+                const RowIntervals* only, double stripes) {
   std::vector<Primitive> primitives = unprepared;
   for (Primitive& p : primitives)
     prepare(p, camera.centre);
@@ -99,85 +99,92 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
     columnX[static_cast<std::size_t>(x)] = (x - camera.cx) / camera.f;
   // A surface is replaced only by a strictly nearer one; each row belongs to
   // one thread, so the split does not change the result.
-  cv::parallel_for_(cv::Range(0, camera.height), [&](const cv::Range& rows) {
-    for (std::size_t i = 0; i < primitives.size(); ++i) {
-      const Primitive& p = primitives[i];
-      // One pixel loop per shape, so that its ray test is inlined.
-      auto loop = [&](auto test) {
-        const cv::Rect& r = rects[i];
-        const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
-        // Pixels x0 <= x < x1 of row y.
-        auto segment = [&](int y, int x0, int x1) {
-          if (x1 <= x0) return;
-          auto* colour = layer.colour.ptr<cv::Vec3b>(y);
-          auto* depth = layer.depth.ptr<double>(y);
-          const double rowY = (y - camera.cy) / camera.f;
-          // In batches: the ray tests of a batch, then the shading of its hits.
-          // Each pixel is one long chain of dependent operations; two short
-          // loops let the processor overlap neighbouring pixels. The result
-          // is the same as one loop: a primitive touches each pixel once.
-          constexpr int kBatch = 32;
-          Ray rays[kBatch];
-          Hit hits[kBatch];
-          int xs[kBatch];
-          for (int xb = x0; xb < x1; xb += kBatch) {
-            const int xe = std::min(x1, xb + kBatch);
-            int n = 0;
-            if (p.shape == Primitive::Shape::Capsule) {
-              n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays, hits,
-                                         xs);
-            } else {
-              for (int x = xb; x < xe; ++x) {
-                Ray& ray = rays[n];
-                ray.o = camera.centre;
-                ray.d =
-                    camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-                if (!test(p, ray, depth[x], hits[n])) continue;
-                xs[n++] = x;
+  cv::parallel_for_(
+      cv::Range(0, camera.height),
+      [&](const cv::Range& rows) {
+        for (std::size_t i = 0; i < primitives.size(); ++i) {
+          const Primitive& p = primitives[i];
+          // One pixel loop per shape, so that its ray test is inlined.
+          auto loop = [&](auto test) {
+            const cv::Rect& r = rects[i];
+            const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
+            // Pixels x0 <= x < x1 of row y.
+            auto segment = [&](int y, int x0, int x1) {
+              if (x1 <= x0) return;
+              auto* colour = layer.colour.ptr<cv::Vec3b>(y);
+              auto* depth = layer.depth.ptr<double>(y);
+              const double rowY = (y - camera.cy) / camera.f;
+              // In batches: the ray tests of a batch, then the shading of its hits.
+              // Each pixel is one long chain of dependent operations; two short
+              // loops let the processor overlap neighbouring pixels. The result
+              // is the same as one loop: a primitive touches each pixel once.
+              constexpr int kBatch = 32;
+              Ray rays[kBatch];
+              Hit hits[kBatch];
+              int xs[kBatch];
+              for (int xb = x0; xb < x1; xb += kBatch) {
+                const int xe = std::min(x1, xb + kBatch);
+                int n = 0;
+                if (p.shape == Primitive::Shape::Capsule) {
+                  n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
+                                             hits, xs);
+                } else {
+                  for (int x = xb; x < xe; ++x) {
+                    Ray& ray = rays[n];
+                    ray.o = camera.centre;
+                    ray.d = camera.rigToWorld.apply(
+                        Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
+                    if (!test(p, ray, depth[x], hits[n])) continue;
+                    xs[n++] = x;
+                  }
+                }
+                for (int k = 0; k < n; ++k) {
+                  const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
+                  depth[xs[k]] = hits[k].t;
+                  colour[xs[k]] =
+                      cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
+                                cv::saturate_cast<uchar>(c[2]));
+                }
               }
+            };
+            const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
+            for (int y = y0; y < y1; ++y) {
+              if (only && only->row(y).empty()) continue;
+              int x0 = r.x, x1 = r.x + r.width;
+              if (spans && !spans->span(y, x0, x1)) continue;
+              if (!only) {
+                segment(y, x0, x1);
+                continue;
+              }
+              for (const Interval& in : only->row(y))
+                segment(y, std::max(x0, in.x0), std::min(x1, in.x1));
             }
-            for (int k = 0; k < n; ++k) {
-              const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
-              depth[xs[k]] = hits[k].t;
-              colour[xs[k]] =
-                  cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                            cv::saturate_cast<uchar>(c[2]));
-            }
+          };
+          switch (p.shape) {
+            case Primitive::Shape::Box:
+              loop([](auto&&... a) {
+                return detail::intersectBox(std::forward<decltype(a)>(a)...);
+              });
+              break;
+            case Primitive::Shape::Room:
+              loop([](auto&&... a) {
+                return detail::intersectRoom(std::forward<decltype(a)>(a)...);
+              });
+              break;
+            case Primitive::Shape::Ellipsoid:
+              loop([](auto&&... a) {
+                return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
+              });
+              break;
+            case Primitive::Shape::Capsule:
+              loop([](auto&&... a) {
+                return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
+              });
+              break;
           }
-        };
-        const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
-        for (int y = y0; y < y1; ++y) {
-          if (only && only->row(y).empty()) continue;
-          int x0 = r.x, x1 = r.x + r.width;
-          if (spans && !spans->span(y, x0, x1)) continue;
-          if (!only) {
-            segment(y, x0, x1);
-            continue;
-          }
-          for (const Interval& in : only->row(y))
-            segment(y, std::max(x0, in.x0), std::min(x1, in.x1));
         }
-      };
-      switch (p.shape) {
-        case Primitive::Shape::Box:
-          loop([](auto&&... a) { return detail::intersectBox(std::forward<decltype(a)>(a)...); });
-          break;
-        case Primitive::Shape::Room:
-          loop([](auto&&... a) { return detail::intersectRoom(std::forward<decltype(a)>(a)...); });
-          break;
-        case Primitive::Shape::Ellipsoid:
-          loop([](auto&&... a) {
-            return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
-          });
-          break;
-        case Primitive::Shape::Capsule:
-          loop([](auto&&... a) {
-            return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
-          });
-          break;
-      }
-    }
-  });
+      },
+      stripes);
   return all;
 }
 

@@ -45,9 +45,10 @@ void coverage(const Camera& camera, const Primitive& primitive, RowIntervals& ou
 
 // Draws `primitives` over `layer` where they are nearer than what it holds,
 // inside `only` (nullptr: the whole image); returns the union of the pixel
-// rectangles it looked at. Rows are split across OpenCV's threads; the result
-// does not depend on the split.
+// rectangles it looked at. Rows are split across OpenCV's threads, into at
+// most `stripes` parts (-1: OpenCV's choice; 1: the calling thread); the
+// result does not depend on the split.
 cv::Rect render(const Camera& camera, const std::vector<Primitive>& primitives, Layer& layer,
-                const RowIntervals* only = nullptr);
+                const RowIntervals* only = nullptr, double stripes = -1);
 
 }  // namespace horopter::synth

@@ -26,6 +26,8 @@ class SceneRenderer {
 
  private:
   void updateStatic(const HeadPose& head);
+  // How many parts a frame's rows are split into (-1: OpenCV's choice).
+  double stripes() const { return options_.threads > 0 ? options_.threads : -1.0; }
   void updateStaticTruth(const HeadPose& head);
 
   SceneOptions options_;

@@ -44,6 +44,9 @@ void validate(const SceneOptions& o) {
   if (!std::isfinite(o.sensorNoiseSigma) || o.sensorNoiseSigma < 0 || o.sensorNoiseSigma > 64)
     throw Error("synthetic scene sensorNoiseSigma must be in [0, 64] grey levels, got " +
                 num(o.sensorNoiseSigma));
+  if (o.threads < 0 || o.threads > 256)
+    throw Error("synthetic scene threads must be 0 (OpenCV's) or 1..256, got " +
+                std::to_string(o.threads));
   if (!std::isfinite(o.personDistanceM) || o.personDistanceM < 0 ||
       (o.personDistanceM > 0 && (o.personDistanceM < 0.6 || o.personDistanceM > 4)))
     throw Error("synthetic scene personDistanceM must be 0 (by seed) or in [0.6, 4] m, got " +
@@ -113,7 +116,7 @@ void SceneRenderer::updateStatic(const HeadPose& head) {
   if (staticValid_ && head.pan == staticPan_ && head.tilt == staticTilt_) return;
   for (int eye = 0; eye < 2; ++eye) {
     staticLayer_[eye].reset(options_.width, options_.height);
-    synth::render(camera(head, eye), room_, staticLayer_[eye]);
+    synth::render(camera(head, eye), room_, staticLayer_[eye], nullptr, stripes());
   }
   staticPan_ = head.pan;
   staticTilt_ = head.tilt;
@@ -130,7 +133,7 @@ void SceneRenderer::updateStaticTruth(const HeadPose& head) {
   allocatePixelTruth(options_.width, options_.height, staticTruth_);
   pixelTruth(camera(head, 0), staticLayer_[0], staticLayer_[1], options_.baselineM,
              ZoneCircle(options_.baselineM, head.vergence),
-             cv::Rect(0, 0, options_.width, options_.height), staticTruth_);
+             cv::Rect(0, 0, options_.width, options_.height), staticTruth_, stripes());
   staticTruthVergence_ = head.vergence;
   staticTruthValid_ = true;
 }
@@ -178,11 +181,11 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
           std::copy_n(staticLayer_[eye].depth.ptr<double>(y) + in.x0, n,
                       layer.depth.ptr<double>(y) + in.x0);
         }
-      synth::render(cam, prims, layer, &redraw);
+      synth::render(cam, prims, layer, &redraw, stripes());
     } else {
       staticLayer_[eye].colour.copyTo(layer.colour);
       staticLayer_[eye].depth.copyTo(layer.depth);
-      if (!prims.empty()) drawn[eye] = synth::render(cam, prims, layer);
+      if (!prims.empty()) drawn[eye] = synth::render(cam, prims, layer, nullptr, stripes());
     }
   }
 
@@ -215,7 +218,8 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
         truthRows_.add(y, in.x0, std::min(options_.width, in.x1 + reach));
     }
     truthRows_.merge();
-    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, truthRows_, frameTruth_);
+    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, truthRows_, frameTruth_,
+               stripes());
   } else {
     staticTruth_.disparity.copyTo(frameTruth_.disparity);
     staticTruth_.inside.copyTo(frameTruth_.inside);
@@ -226,7 +230,7 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
       shifted.width += static_cast<int>(std::ceil(maxStaticDisparityPx_)) + 2;
       dirty = dirty.empty() ? shifted : (dirty | shifted);
     }
-    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_);
+    pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_, stripes());
   }
   truth.disparity = frameTruth_.disparity.clone();
   truth.inside = frameTruth_.inside.clone();

@@ -66,25 +66,32 @@ void truthSpan(const Camera& left, const Layer& leftLayer, const Layer& rightLay
 }  // namespace
 
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
-                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth) {
+                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth,
+                double stripes) {
   rect &= cv::Rect(0, 0, left.width, left.height);
   if (rect.empty()) return;
-  cv::parallel_for_(cv::Range(rect.y, rect.y + rect.height), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y)
-      truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, rect.x, rect.x + rect.width,
-                truth);
-  });
+  cv::parallel_for_(
+      cv::Range(rect.y, rect.y + rect.height),
+      [&](const cv::Range& rows) {
+        for (int y = rows.start; y < rows.end; ++y)
+          truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, rect.x, rect.x + rect.width,
+                    truth);
+      },
+      stripes);
 }
 
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
                 double baselineM, const ZoneCircle& zone, const RowIntervals& intervals,
-                FrameTruth& truth) {
-  cv::parallel_for_(cv::Range(0, intervals.height()), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y)
-      for (const Interval& in : intervals.row(y))
-        truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, std::max(in.x0, 0),
-                  std::min(in.x1, left.width), truth);
-  });
+                FrameTruth& truth, double stripes) {
+  cv::parallel_for_(
+      cv::Range(0, intervals.height()),
+      [&](const cv::Range& rows) {
+        for (int y = rows.start; y < rows.end; ++y)
+          for (const Interval& in : intervals.row(y))
+            truthSpan(left, leftLayer, rightLayer, baselineM, zone, y, std::max(in.x0, 0),
+                      std::min(in.x1, left.width), truth);
+      },
+      stripes);
 }
 
 PersonTruth personTruth(const Camera& left, const Layer& leftLayer, double baselineM,

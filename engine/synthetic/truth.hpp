@@ -28,14 +28,16 @@ class ZoneCircle {
   double halfBaseline_, fixation_, centreZ_, radius_;
 };
 
-// disparity, inside and occluded of `truth` inside `rect` (the maps must
+// disparity, inside and occluded of `truth` inside `rect` (rows split as in
+// render(), into at most `stripes` parts) (the maps must
 // already have the image's size and types), from the two views' depths.
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
-                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth);
+                double baselineM, const ZoneCircle& zone, cv::Rect rect, FrameTruth& truth,
+                double stripes = -1);
 // The same inside `rows` (intervals per row of the image).
 void pixelTruth(const Camera& left, const Layer& leftLayer, const Layer& rightLayer,
                 double baselineM, const ZoneCircle& zone, const RowIntervals& rows,
-                FrameTruth& truth);
+                FrameTruth& truth, double stripes = -1);
 // Allocates the three maps of `truth` for a width x height image.
 void allocatePixelTruth(int width, int height, FrameTruth& truth);
 

@@ -64,6 +64,10 @@ struct SceneOptions {
   double sensorNoiseSigma = 0;  // Gaussian noise per pixel and channel (grey levels), per view
   double personDistanceM = 0;   // the main person's station depth, metres (0: 1.2-1.4 m by seed)
   bool skinClutter = false;     // skin-coloured panels on the back wall, a rug and a poster
+  // Threads a frame is rendered on: 0, OpenCV's (cv::getNumThreads()); N,
+  // at most N (1: the calling thread only, for a pipeline that already keeps
+  // the other cores busy with other frames). The frames do not depend on it.
+  int threads = 0;
 };
 
 enum class Movement { None, Circle, Pointing, WaveLeft, WaveRight, SagittalWave, ByeBye };

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "horopter/error.hpp"
 #include "horopter/synthetic_scene.hpp"
 
 namespace horopter::synth {
@@ -75,6 +76,19 @@ TEST(SyntheticIncremental, HeadCommandsAndJumpsBetweenFrames) {
     alone.commandHead(s.head);
     expectSameFrame(f, alone.render(s.index), "frame " + std::to_string(s.index));
   }
+}
+
+// The rows of a frame split over OpenCV's threads or drawn on the calling
+// thread alone: the same frames. A negative count is refused.
+TEST(SyntheticIncremental, ThreadCountDoesNotChangeFrames) {
+  SceneOptions one = smallScene();
+  one.threads = 1;
+  SyntheticScene serial(one), parallel(smallScene());
+  for (int index = 50; index < 56; ++index)
+    expectSameFrame(serial.render(index), parallel.render(index), "frame " + std::to_string(index));
+  SceneOptions bad = smallScene();
+  bad.threads = -1;
+  EXPECT_THROW(SyntheticScene{bad}, Error);
 }
 
 }  // namespace
