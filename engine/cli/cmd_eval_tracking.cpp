@@ -52,8 +52,11 @@ const char* kEvalTrackingHelp =
     "  --full-search-every N  search the whole region (or image) for faces every Nth frame\n"
     "                     and only around the previous frame's faces in between, searching\n"
     "                     everywhere when a face is not found again (default 5; 1: every frame)\n"
+    "  --follow-miss-frames N  a followed face not found again is looked for around its last\n"
+    "                     place for N frames before a full search (default 0: at once)\n"
     "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
-    "                     to 0.7 m; nearer hands have no disparity, so no zone)\n"
+    "                     to 0.7 m; nearer hands have no disparity, so no zone; a wider range\n"
+    "                     also widens the band on the left the right view cannot match)\n"
     "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
     "                     sizes the zone's disparities allow (slower; for comparison)\n"
     "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
@@ -61,11 +64,10 @@ const char* kEvalTrackingHelp =
     "  --stills DIR       write every 10th frame of each run, annotated (run's view, with the\n"
     "                     truth's head and hands as white crosses) to DIR\n"
     "  --diagnose         count, per part, why it was lost: the first of no-godfather,\n"
-    "                     barely-visible, no-disparity, outside-mask, face-neck-cut, merged, "
-    "no-skin,\n"
-    "                     removed (no detection near the truth), filtered, no-track, swapped,\n"
-    "                     elsewhere (a detection there, the track not); with -v, one line\n"
-    "                     per lost part on stderr\n"
+    "                     barely-visible, right-view-out, no-disparity, outside-mask,\n"
+    "                     face-neck-cut, merged, no-skin, removed (no detection near the\n"
+    "                     truth), filtered, no-track, swapped, elsewhere (a detection there,\n"
+    "                     the track not); with -v, one line per lost part on stderr\n"
     "  --json             print the results as one JSON object\n"
     "  -v, --verbose      one line per trial on stderr\n";
 
@@ -118,6 +120,8 @@ int runEvalTracking(Args& args) {
   base.detector.fullSearchEvery =
       args.intValue("--full-search-every", base.detector.fullSearchEvery);
   base.stereo.numDisparities = args.intValue("--num-disparities", base.stereo.numDisparities);
+  base.detector.followMissFrames =
+      args.intValue("--follow-miss-frames", base.detector.followMissFrames);
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");
@@ -172,21 +176,23 @@ int runEvalTracking(Args& args) {
           if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
         };
       }
-      TrialFrameCallback onFrame = dump;
-      if (diagnose)
-        onFrame = [&, dump, k](const TrialFrame& t) {
-          if (dump) dump(t);
-          causes[k].add(t, o);
-        };
+      long long fullSearches = 0;  // frames whose faces were searched over the whole region
+      TrialFrameCallback onFrame = [&, dump, k](const TrialFrame& t) {
+        if (dump) dump(t);
+        if (diagnose) causes[k].add(t, o);
+        if (t.frame.detections && t.frame.detections->fullFaceSearch) ++fullSearches;
+      };
       const TrialResult r = runTrackingTrial(o, scopes[k], {}, onFrame);
       scores[k].add(r);
       if (verbose)
         std::fprintf(
-            stderr, "%sseed %llu %-15s loss %5.1f%% (%lld/%lld)  FP %5.1f%%  detect %.2f ms\n",
+            stderr,
+            "%sseed %llu %-15s loss %5.1f%% (%lld/%lld)  FP %5.1f%%  detect %.2f ms  full face "
+            "searches %lld/%lld\n",
             tty ? "\r" : "", static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]),
             100 * r.trackerLoss(), static_cast<long long>(r.lostFrames),
             static_cast<long long>(r.godfatherFrames), 100 * r.falsePositiveRate(),
-            r.stageMs("detection"));
+            r.stageMs("detection"), fullSearches, static_cast<long long>(r.frames));
     }
   }
   if (tty) std::fprintf(stderr, "\r%60s\r", "");

@@ -52,8 +52,12 @@ struct Detector::Impl {
   cv::CascadeClassifier cascade;
   cv::Mat grey, skin, grown, labels, stats, centroids, distance;
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
-  std::vector<cv::Rect> followed;  // the previous frame's faces
-  int sinceFullSearch = 0;         // frames since the last full search
+  struct Followed {
+    cv::Rect box;    // where the face was last found
+    int missed = 0;  // frames since
+  };
+  std::vector<Followed> followed;
+  int sinceFullSearch = 0;  // frames since the last full search
   // Face width / disparity (px per px) of the last faces found in the zone.
   std::vector<float> widthPerDisparity;
   std::size_t nextSample = 0;
@@ -131,8 +135,10 @@ Detector::Detector(DetectorOptions options)
   if (!(o.scaleFactor > 1.0 && o.scaleFactor < 2.0))
     throw Error("face scale factor must be in (1, 2), e.g. 1.1");
   if (o.minNeighbors < 0) throw Error("face minNeighbors must be >= 0");
-  if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10))
-    throw Error("fullSearchEvery must be >= 1 and followMarginFaces within 0..10");
+  if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10) ||
+      o.followMissFrames < 0)
+    throw Error(
+        "fullSearchEvery must be >= 1, followMarginFaces within 0..10 and followMissFrames >= 0");
   if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
   if (!(o.depthFacePercentiles[0] >= 0 && o.depthFacePercentiles[0] <= o.depthFacePercentiles[1] &&
         o.depthFacePercentiles[1] <= 1) ||
@@ -236,7 +242,8 @@ Detections Detector::detect(const Frame& frame) {
   bool searchAll = !follow;
   if (follow) {
     ++m.sinceFullSearch;
-    for (const cv::Rect& f : m.followed) {
+    for (const Impl::Followed& followed : m.followed) {
+      const cv::Rect& f = followed.box;
       const int g = cvRound(o.followMarginFaces * f.width);
       search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi, 2 * f.width);
     }
@@ -252,11 +259,10 @@ Detections Detector::detect(const Frame& frame) {
       if (!seen) unique.push_back(b);
     }
     boxes = std::move(unique);
-    // A followed face not found again: this frame searches everywhere after
-    // all (the cascade is unsteady on small windows; a frame without the
-    // face would cost its hands too).
-    if (static_cast<std::size_t>(std::count_if(boxes.begin(), boxes.end(), kept)) <
-        m.followed.size()) {
+    // followMissFrames 0: a followed face not found again makes this frame
+    // search everywhere after all.
+    if (o.followMissFrames == 0 && static_cast<std::size_t>(std::count_if(
+                                       boxes.begin(), boxes.end(), kept)) < m.followed.size()) {
       boxes.clear();
       searchAll = true;
     }
@@ -276,16 +282,30 @@ Detections Detector::detect(const Frame& frame) {
     d.faces.push_back(f);
   }
   if (region && o.depthFaceSizes) m.learnFaceWidthPerDisparity(frame, d.faces);
-  // Followed next frame.
-  m.followed.clear();
+  // Followed next frame: the faces found, and those not found again for at
+  // most followMissFrames frames (the cascade misses a face now and then; a
+  // miss then costs no full search).
+  std::vector<Impl::Followed> next;
   for (const FaceDetection& f : d.faces)
-    m.followed.push_back(f.box);
+    next.push_back({f.box, 0});
+  for (const Impl::Followed& f : m.followed) {
+    const cv::Point2f c(f.box.x + 0.5f * f.box.width, f.box.y + 0.5f * f.box.height);
+    const bool foundAgain =
+        std::any_of(d.faces.begin(), d.faces.end(), [&](const FaceDetection& g) {
+          return cv::norm(g.centre - c) < std::max(g.width, static_cast<float>(f.box.width));
+        });
+    if (!foundAgain && f.missed < o.followMissFrames) next.push_back({f.box, f.missed + 1});
+  }
+  m.followed = std::move(next);
   std::sort(d.faces.begin(), d.faces.end(), [](const FaceDetection& a, const FaceDetection& b) {
     return std::tie(a.box.x, a.box.y, a.box.width) < std::tie(b.box.x, b.box.y, b.box.width);
   });
 
   // Hands: skin that is neither a face nor a neck.
   o.skin.classify(colour, roi, m.skin);
+  const bool haveDisparity = region && !frame.disparity.empty() &&
+                             frame.disparity.type() == CV_16SC1 &&
+                             frame.disparity.size() == frame.left.size();
   if (region) cv::bitwise_and(m.skin, m.grown, m.skin);
   for (const FaceDetection& f : d.faces) {
     const int mx = static_cast<int>(o.faceMargin * f.box.width);
@@ -303,9 +323,7 @@ Detections Detector::detect(const Frame& frame) {
   // and right grey levels agree there). Block matching gives a strip of wall
   // beside the silhouette the person's disparity; at the pixel the wall's
   // texture then disagrees.
-  const bool stereo = region && !frame.disparity.empty() && frame.disparity.type() == CV_16SC1 &&
-                      frame.disparity.size() == frame.left.size() &&
-                      frame.leftGrey.size() == frame.left.size() &&
+  const bool stereo = haveDisparity && frame.leftGrey.size() == frame.left.size() &&
                       frame.rightGrey.size() == frame.left.size() &&
                       frame.leftGrey.type() == CV_8UC1 && frame.rightGrey.type() == CV_8UC1;
   std::vector<int> agree(static_cast<std::size_t>(n), 0), measured(static_cast<std::size_t>(n), 0);

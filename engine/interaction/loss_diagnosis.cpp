@@ -15,6 +15,8 @@ const char* lossCauseName(LossCause cause) {
       return "no-godfather";
     case LossCause::BarelyVisible:
       return "barely-visible";
+    case LossCause::RightViewOut:
+      return "right-view-out";
     case LossCause::NoDisparity:
       return "no-disparity";
     case LossCause::OutsideMask:
@@ -124,6 +126,8 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
           });
       if (part != 0 && shown < 1.0 / 3)
         cause = LossCause::BarelyVisible;
+      else if (region && masked < 1.0 / 3 && hz > 0 && focal > 0 && at.x < focal * base / hz)
+        cause = LossCause::RightViewOut;
       else if (region && masked < 1.0 / 3 && valid < 0.5)
         cause = LossCause::NoDisparity;
       else if (region && masked < 1.0 / 3)

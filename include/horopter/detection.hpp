@@ -50,6 +50,10 @@ struct DetectorOptions {
   // gave 12.01 against 11.77 % loss for 27.9 against 47.1 ms of detection.)
   int fullSearchEvery = 5;
   double followMarginFaces = 1.0;
+  // A followed face that is not found again is still looked for around its
+  // last place for this many frames, without a full search (0: a miss makes
+  // the same frame search everywhere).
+  int followMissFrames = 0;
   // Region: faces sized by depth. A face's width in pixels is k times its
   // disparity (k = its width in metres over the baseline), learnt from the
   // faces found so far (the median of the last 15; 3 needed); the cascade

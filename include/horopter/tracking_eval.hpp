@@ -105,8 +105,10 @@ enum class LossCause {
   NoGodfather,  // the tracker has no elected godfather (election late, or head lost)
   // No detection near the truth (within the scorer's tolerance):
   BarelyVisible,  // under a third of the hand's disc shows the hand (truth's occlusion)
+  RightViewOut,   // the part's centre is outside the right view (x < its disparity): no
+                  // stereo, so no zone there, though the left image shows it
   NoDisparity,    // no valid disparity on most of the part's disc (nearer than the search
-                  // range, or out of the right view), so no zone there
+                  // range, or textureless), so no zone there
   OutsideMask,    // the zone's mask covers under a third of the part's disc
   FaceNeckCut,    // the part lies in a face's face-and-neck exclusion box
   Merged,         // a hand candidate's box holds the part but its centroid is elsewhere
