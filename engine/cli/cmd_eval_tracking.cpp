@@ -54,6 +54,8 @@ const char* kEvalTrackingHelp =
     "                     everywhere when a face is not found again (default 5; 1: every frame)\n"
     "  --follow-miss-frames N  a followed face not found again is looked for around its last\n"
     "                     place for N frames before a full search (default 0: at once)\n"
+    "  --exhaustive-search-every N  in the region, full face searches look only around the\n"
+    "                     zone's skin blobs but every Nth (default 5; 1: every one; 0: none)\n"
     "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
     "                     to 0.7 m; nearer hands have no disparity, so no zone; a wider range\n"
     "                     also widens the band on the left the right view cannot match)\n"
@@ -122,6 +124,8 @@ int runEvalTracking(Args& args) {
   base.stereo.numDisparities = args.intValue("--num-disparities", base.stereo.numDisparities);
   base.detector.followMissFrames =
       args.intValue("--follow-miss-frames", base.detector.followMissFrames);
+  base.detector.exhaustiveSearchEvery =
+      args.intValue("--exhaustive-search-every", base.detector.exhaustiveSearchEvery);
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");

@@ -58,6 +58,7 @@ struct Detector::Impl {
   };
   std::vector<Followed> followed;
   int sinceFullSearch = 0;  // frames since the last full search
+  int sinceExhaustive = 0;  // full searches since the last exhaustive one
   // Face width / disparity (px per px) of the last faces found in the zone.
   std::vector<float> widthPerDisparity;
   std::size_t nextSample = 0;
@@ -136,9 +137,10 @@ Detector::Detector(DetectorOptions options)
     throw Error("face scale factor must be in (1, 2), e.g. 1.1");
   if (o.minNeighbors < 0) throw Error("face minNeighbors must be >= 0");
   if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10) ||
-      o.followMissFrames < 0)
+      o.followMissFrames < 0 || o.exhaustiveSearchEvery < 0 || !(o.skinGuideArea >= 0))
     throw Error(
-        "fullSearchEvery must be >= 1, followMarginFaces within 0..10 and followMissFrames >= 0");
+        "fullSearchEvery must be >= 1, followMarginFaces within 0..10, followMissFrames, "
+        "exhaustiveSearchEvery and skinGuideArea >= 0");
   if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
   if (!(o.depthFacePercentiles[0] >= 0 && o.depthFacePercentiles[0] <= o.depthFacePercentiles[1] &&
         o.depthFacePercentiles[1] <= 1) ||
@@ -236,18 +238,30 @@ Detections Detector::detect(const Frame& frame) {
       boxes.emplace_back(cvRound(b.x * k) + area.x, cvRound(b.y * k) + area.y, cvRound(b.width * k),
                          cvRound(b.height * k));
   };
-  // Whether a box the cascade found is kept (the region keeps the zone's).
-  auto kept = [&](const cv::Rect& b) { return !region || zoneCover(frame.mask, b) >= 0.3; };
-  const bool follow = !m.followed.empty() && m.sinceFullSearch + 1 < o.fullSearchEvery;
-  bool searchAll = !follow;
-  if (follow) {
-    ++m.sinceFullSearch;
-    for (const Impl::Followed& followed : m.followed) {
-      const cv::Rect& f = followed.box;
-      const int g = cvRound(o.followMarginFaces * f.width);
-      search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi, 2 * f.width);
+  // Skin in the zone: where the hands are looked for below, and what guides
+  // the full face searches.
+  o.skin.classify(colour, roi, m.skin);
+  if (region) cv::bitwise_and(m.skin, m.grown, m.skin);
+  // The windows a guided full search looks in: around each skin blob large
+  // enough to hold a face (a face is skin; in the region, in the zone).
+  auto skinWindows = [&] {
+    std::vector<cv::Rect> windows;
+    const int n =
+        cv::connectedComponentsWithStats(m.skin, m.labels, m.stats, m.centroids, 8, CV_32S);
+    for (int i = 1; i < n; ++i) {
+      const cv::Rect b(
+          m.stats.at<int>(i, cv::CC_STAT_LEFT) + roi.x, m.stats.at<int>(i, cv::CC_STAT_TOP) + roi.y,
+          m.stats.at<int>(i, cv::CC_STAT_WIDTH), m.stats.at<int>(i, cv::CC_STAT_HEIGHT));
+      if (m.stats.at<int>(i, cv::CC_STAT_AREA) < o.skinGuideArea * minFace * minFace ||
+          std::max(b.width, b.height) < minFace / 2)
+        continue;
+      const int g = std::max(minFace, std::max(b.width, b.height)) / 2 + pad;
+      windows.push_back(cv::Rect(b.x - g, b.y - g, b.width + 2 * g, b.height + 2 * g) & faceRoi);
     }
-    // Windows of faces close together overlap: keep one box of each face.
+    return windows;
+  };
+  // Windows close together overlap: keep one box of each face.
+  auto dedupe = [&] {
     std::sort(boxes.begin(), boxes.end(), [](const cv::Rect& a, const cv::Rect& b) {
       return std::tie(a.x, a.y, a.width, a.height) < std::tie(b.x, b.y, b.width, b.height);
     });
@@ -259,6 +273,19 @@ Detections Detector::detect(const Frame& frame) {
       if (!seen) unique.push_back(b);
     }
     boxes = std::move(unique);
+  };
+  // Whether a box the cascade found is kept (the region keeps the zone's).
+  auto kept = [&](const cv::Rect& b) { return !region || zoneCover(frame.mask, b) >= 0.3; };
+  const bool follow = !m.followed.empty() && m.sinceFullSearch + 1 < o.fullSearchEvery;
+  bool searchAll = !follow;
+  if (follow) {
+    ++m.sinceFullSearch;
+    for (const Impl::Followed& followed : m.followed) {
+      const cv::Rect& f = followed.box;
+      const int g = cvRound(o.followMarginFaces * f.width);
+      search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi, 2 * f.width);
+    }
+    dedupe();
     // followMissFrames 0: a followed face not found again makes this frame
     // search everywhere after all.
     if (o.followMissFrames == 0 && static_cast<std::size_t>(std::count_if(
@@ -269,7 +296,21 @@ Detections Detector::detect(const Frame& frame) {
   }
   if (searchAll) {
     m.sinceFullSearch = 0;
-    search(faceRoi, 0);
+    // While a face is followed, guided by skin, but every
+    // exhaustiveSearchEvery-th full search looks everywhere (a face the skin
+    // model misses); with no face yet, everywhere (a face found a frame
+    // late is elected a frame late).
+    const bool guided =
+        region && o.exhaustiveSearchEvery != 1 && !m.followed.empty() &&
+        (o.exhaustiveSearchEvery == 0 || ++m.sinceExhaustive < o.exhaustiveSearchEvery);
+    if (guided) {
+      for (const cv::Rect& w : skinWindows())
+        search(w, 0);
+      dedupe();
+    } else {
+      m.sinceExhaustive = 0;
+      search(faceRoi, 0);
+    }
   }
   d.fullFaceSearch = searchAll;
   for (const cv::Rect& b : boxes) {
@@ -301,12 +342,10 @@ Detections Detector::detect(const Frame& frame) {
     return std::tie(a.box.x, a.box.y, a.box.width) < std::tie(b.box.x, b.box.y, b.box.width);
   });
 
-  // Hands: skin that is neither a face nor a neck.
-  o.skin.classify(colour, roi, m.skin);
+  // Hands: skin (classified above) that is neither a face nor a neck.
   const bool haveDisparity = region && !frame.disparity.empty() &&
                              frame.disparity.type() == CV_16SC1 &&
                              frame.disparity.size() == frame.left.size();
-  if (region) cv::bitwise_and(m.skin, m.grown, m.skin);
   for (const FaceDetection& f : d.faces) {
     const int mx = static_cast<int>(o.faceMargin * f.box.width);
     cv::Rect out(f.box.x - mx - roi.x, f.box.y - mx - roi.y, f.box.width + 2 * mx,

@@ -54,6 +54,12 @@ struct DetectorOptions {
   // last place for this many frames, without a full search (0: a miss makes
   // the same frame search everywhere).
   int followMissFrames = 0;
+  // Region, while a face is followed: a full search looks only around the
+  // zone's skin blobs of at least skinGuideArea squared smallest faces (a
+  // face is skin), except one in exhaustiveSearchEvery that looks everywhere
+  // (1: always everywhere; 0: never). With no face followed, everywhere.
+  int exhaustiveSearchEvery = 5;
+  double skinGuideArea = 0.2;
   // Region: faces sized by depth. A face's width in pixels is k times its
   // disparity (k = its width in metres over the baseline), learnt from the
   // faces found so far (the median of the last 15; 3 needed); the cascade

@@ -94,6 +94,27 @@ TEST(Detection, FollowingFindsTheFaceAFullSearchFinds) {
   }
 }
 
+// A full search guided by skin (only around the zone's skin blobs) finds
+// the face an exhaustive search finds.
+TEST(Detection, SkinGuidedSearchFindsTheFaceTheExhaustiveSearchFinds) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  DetectorOptions guidedOptions, exhaustiveOptions;
+  guidedOptions.fullSearchEvery = exhaustiveOptions.fullSearchEvery = 1;
+  guidedOptions.exhaustiveSearchEvery = 0;
+  exhaustiveOptions.exhaustiveSearchEvery = 1;
+  Detector guided(guidedOptions), exhaustive(exhaustiveOptions);
+  for (int index = 100; index < 103; ++index) {
+    const Frame frame = renderedFrame(index);
+    const Detections a = guided.detect(frame), b = exhaustive.detect(frame);
+    EXPECT_TRUE(a.fullFaceSearch && b.fullFaceSearch);
+    ASSERT_EQ(b.faces.size(), 1u) << "frame " << index;
+    ASSERT_EQ(a.faces.size(), 1u) << "frame " << index;
+    EXPECT_TRUE(near(a.faces[0].centre, b.faces[0].centre, 0.25 * b.faces[0].width))
+        << "frame " << index << ": " << a.faces[0].box << " vs " << b.faces[0].box;
+  }
+}
+
 // Faces sized by depth: once a few faces have given the width per
 // disparity, the cascade searches only the sizes the zone's disparities
 // allow, and still finds the face.
@@ -196,6 +217,9 @@ TEST(Detection, BadInputIsAnError) {
   EXPECT_THROW(Detector{o}, Error);
   o = DetectorOptions{};
   o.fullSearchEvery = 0;
+  EXPECT_THROW(Detector{o}, Error);
+  o = DetectorOptions{};
+  o.exhaustiveSearchEvery = -1;
   EXPECT_THROW(Detector{o}, Error);
   Detector detector(DetectorOptions{});
   Frame frame;
