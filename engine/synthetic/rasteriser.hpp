@@ -1,5 +1,6 @@
 // Renders primitives into a colour + depth layer by casting one ray per pixel
-// inside each primitive's screen rectangle (a z-buffer of exact ray depths).
+// inside each primitive's screen rectangle, narrowed for a capsule to the
+// span of each row it can hit (a z-buffer of exact ray depths).
 #pragma once
 
 #include <opencv2/core.hpp>

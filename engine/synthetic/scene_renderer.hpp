@@ -1,5 +1,6 @@
 // The renderer behind SyntheticScene: cameras from the head pose, the static
-// room cached per (pan, tilt) for each view, people drawn over it each frame.
+// room cached per (pan, tilt) for each view, people drawn over it each frame
+// (only where they changed since the last frame when the head has not moved).
 #pragma once
 
 #include <vector>
