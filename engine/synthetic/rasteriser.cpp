@@ -97,33 +97,128 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
   std::vector<double> columnX(static_cast<std::size_t>(camera.width));
   for (int x = 0; x < camera.width; ++x)
     columnX[static_cast<std::size_t>(x)] = (x - camera.cx) / camera.f;
-  // A surface is replaced only by a strictly nearer one; each row belongs to
-  // one thread, so the split does not change the result.
+  if (only) {
+    // Redrawing parts of a frame (`only`): each primitive in turn over the rows,
+    // shading as it goes (few surfaces there end up hidden). A surface is
+    // replaced only by a strictly nearer one; each row belongs to one thread,
+    // so the split does not change the result.
+    cv::parallel_for_(
+        cv::Range(0, camera.height),
+        [&](const cv::Range& rows) {
+          for (std::size_t i = 0; i < primitives.size(); ++i) {
+            const Primitive& p = primitives[i];
+            // One pixel loop per shape, so that its ray test is inlined.
+            auto loop = [&](auto test) {
+              const cv::Rect& r = rects[i];
+              const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
+              // Pixels x0 <= x < x1 of row y.
+              auto segment = [&](int y, int x0, int x1) {
+                if (x1 <= x0) return;
+                auto* colour = layer.colour.ptr<cv::Vec3b>(y);
+                auto* depth = layer.depth.ptr<double>(y);
+                const double rowY = (y - camera.cy) / camera.f;
+                // In batches: the ray tests of a batch, then the shading of its hits.
+                // Each pixel is one long chain of dependent operations; two short
+                // loops let the processor overlap neighbouring pixels. The result
+                // is the same as one loop: a primitive touches each pixel once.
+                constexpr int kBatch = 32;
+                Ray rays[kBatch];
+                Hit hits[kBatch];
+                int xs[kBatch];
+                for (int xb = x0; xb < x1; xb += kBatch) {
+                  const int xe = std::min(x1, xb + kBatch);
+                  int n = 0;
+                  if (p.shape == Primitive::Shape::Capsule) {
+                    n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
+                                               hits, xs);
+                  } else {
+                    for (int x = xb; x < xe; ++x) {
+                      Ray& ray = rays[n];
+                      ray.o = camera.centre;
+                      ray.d = camera.rigToWorld.apply(
+                          Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
+                      if (!test(p, ray, depth[x], hits[n])) continue;
+                      xs[n++] = x;
+                    }
+                  }
+                  for (int k = 0; k < n; ++k) {
+                    const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
+                    depth[xs[k]] = hits[k].t;
+                    colour[xs[k]] =
+                        cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
+                                  cv::saturate_cast<uchar>(c[2]));
+                  }
+                }
+              };
+              const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
+              for (int y = y0; y < y1; ++y) {
+                if (only->row(y).empty()) continue;
+                int x0 = r.x, x1 = r.x + r.width;
+                if (spans && !spans->span(y, x0, x1)) continue;
+                for (const Interval& in : only->row(y))
+                  segment(y, std::max(x0, in.x0), std::min(x1, in.x1));
+              }
+            };
+            switch (p.shape) {
+              case Primitive::Shape::Box:
+                loop([](auto&&... a) {
+                  return detail::intersectBox(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Room:
+                loop([](auto&&... a) {
+                  return detail::intersectRoom(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Ellipsoid:
+                loop([](auto&&... a) {
+                  return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Capsule:
+                loop([](auto&&... a) {
+                  return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
+                });
+                break;
+            }
+          }
+        },
+        stripes);
+    return all;
+  }
+  // A whole image: row by row, every primitive's ray tests in order, a surface replacing
+  // another only when strictly nearer (the depth row holds the nearest so
+  // far), then one shading per pixel, of the surface that won. That is what
+  // drawing the primitives one after another leaves, without shading the
+  // surfaces that end up hidden (a third of the shading when the room is
+  // drawn). Each row belongs to one thread, so the split does not change the
+  // result.
   cv::parallel_for_(
       cv::Range(0, camera.height),
       [&](const cv::Range& rows) {
-        for (std::size_t i = 0; i < primitives.size(); ++i) {
-          const Primitive& p = primitives[i];
-          // One pixel loop per shape, so that its ray test is inlined.
-          auto loop = [&](auto test) {
+        std::vector<Hit> rowHits(static_cast<std::size_t>(camera.width));
+        std::vector<int> winner(static_cast<std::size_t>(camera.width), -1);
+        for (int y = rows.start; y < rows.end; ++y) {
+          auto* colour = layer.colour.ptr<cv::Vec3b>(y);
+          auto* depth = layer.depth.ptr<double>(y);
+          const double rowY = (y - camera.cy) / camera.f;
+          int lo = camera.width, hi = 0;  // the pixels some primitive won
+          for (std::size_t i = 0; i < primitives.size(); ++i) {
+            const Primitive& p = primitives[i];
             const cv::Rect& r = rects[i];
-            const std::optional<detail::CapsuleRows>& spans = capsuleRows[i];
-            // Pixels x0 <= x < x1 of row y.
-            auto segment = [&](int y, int x0, int x1) {
-              if (x1 <= x0) return;
-              auto* colour = layer.colour.ptr<cv::Vec3b>(y);
-              auto* depth = layer.depth.ptr<double>(y);
-              const double rowY = (y - camera.cy) / camera.f;
-              // In batches: the ray tests of a batch, then the shading of its hits.
-              // Each pixel is one long chain of dependent operations; two short
-              // loops let the processor overlap neighbouring pixels. The result
-              // is the same as one loop: a primitive touches each pixel once.
+            if (y < r.y || y >= r.y + r.height) continue;
+            int x0 = r.x, x1 = r.x + r.width;
+            if (capsuleRows[i] && !capsuleRows[i]->span(y, x0, x1)) continue;
+            // Pixels a <= x < b, in batches: the ray tests, then the record
+            // of the hits (each pixel is one long chain of dependent
+            // operations; short loops let the processor overlap pixels).
+            auto testSpan = [&](int a, int b, auto test) {
               constexpr int kBatch = 32;
               Ray rays[kBatch];
               Hit hits[kBatch];
               int xs[kBatch];
-              for (int xb = x0; xb < x1; xb += kBatch) {
-                const int xe = std::min(x1, xb + kBatch);
+              for (int xb = a; xb < b; xb += kBatch) {
+                const int xe = std::min(b, xb + kBatch);
                 int n = 0;
                 if (p.shape == Primitive::Shape::Capsule) {
                   n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
@@ -139,48 +234,51 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                   }
                 }
                 for (int k = 0; k < n; ++k) {
-                  const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
-                  depth[xs[k]] = hits[k].t;
-                  colour[xs[k]] =
-                      cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                                cv::saturate_cast<uchar>(c[2]));
+                  const int x = xs[k];
+                  depth[x] = hits[k].t;
+                  rowHits[static_cast<std::size_t>(x)] = hits[k];
+                  winner[static_cast<std::size_t>(x)] = static_cast<int>(i);
+                  lo = std::min(lo, x);
+                  hi = std::max(hi, x + 1);
                 }
               }
             };
-            const int y0 = std::max(rows.start, r.y), y1 = std::min(rows.end, r.y + r.height);
-            for (int y = y0; y < y1; ++y) {
-              if (only && only->row(y).empty()) continue;
-              int x0 = r.x, x1 = r.x + r.width;
-              if (spans && !spans->span(y, x0, x1)) continue;
-              if (!only) {
-                segment(y, x0, x1);
-                continue;
-              }
-              for (const Interval& in : only->row(y))
-                segment(y, std::max(x0, in.x0), std::min(x1, in.x1));
+            // One loop per shape, so that its ray test is inlined.
+            auto spans = [&](auto test) { testSpan(x0, x1, test); };
+            switch (p.shape) {
+              case Primitive::Shape::Box:
+                spans([](auto&&... a) {
+                  return detail::intersectBox(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Room:
+                spans([](auto&&... a) {
+                  return detail::intersectRoom(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Ellipsoid:
+                spans([](auto&&... a) {
+                  return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
+                });
+                break;
+              case Primitive::Shape::Capsule:
+                spans([](auto&&... a) {
+                  return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
+                });
+                break;
             }
-          };
-          switch (p.shape) {
-            case Primitive::Shape::Box:
-              loop([](auto&&... a) {
-                return detail::intersectBox(std::forward<decltype(a)>(a)...);
-              });
-              break;
-            case Primitive::Shape::Room:
-              loop([](auto&&... a) {
-                return detail::intersectRoom(std::forward<decltype(a)>(a)...);
-              });
-              break;
-            case Primitive::Shape::Ellipsoid:
-              loop([](auto&&... a) {
-                return detail::intersectEllipsoid(std::forward<decltype(a)>(a)...);
-              });
-              break;
-            case Primitive::Shape::Capsule:
-              loop([](auto&&... a) {
-                return detail::intersectCapsule(std::forward<decltype(a)>(a)...);
-              });
-              break;
+          }
+          for (int x = lo; x < hi; ++x) {
+            const int w = winner[static_cast<std::size_t>(x)];
+            if (w < 0) continue;
+            winner[static_cast<std::size_t>(x)] = -1;
+            Ray ray;
+            ray.o = camera.centre;
+            ray.d = camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
+            const cv::Vec3f c = shade(primitives[static_cast<std::size_t>(w)], ray,
+                                      rowHits[static_cast<std::size_t>(x)], pixelMetres);
+            colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
+                                  cv::saturate_cast<uchar>(c[2]));
           }
         }
       },
