@@ -63,6 +63,7 @@ class CapsuleRows {
     const double tolerance = 1e-9 * scale;
     if (!(h2 < 0) || -4 * h2 <= tolerance) return x1 > x0;  // keep the whole row
     const double disc = h1 * h1 - 4 * h2 * h0;
+    if (!std::isfinite(disc)) return x1 > x0;  // keep the whole row
     double lo = 0, hi = 0;
     if (disc < 0) {
       // The parabola's top is below zero: no pixel, unless it only just is.
