@@ -55,8 +55,10 @@ void validate(const TrackerOptions& o) {
       !(o.solidHandRadiusFaces >= 0) || !(o.headBlobFaceWidths >= 0))
     throw Error(
         "tracker hand radius, crossing, solid-hand and head-blob limits must be >= 0 face widths");
-  if (!(o.minStereoAgreement >= 0 && o.minStereoAgreement <= 1))
-    throw Error("tracker minStereoAgreement must be a fraction in [0, 1]");
+  if (!(o.minStereoAgreement >= 0 && o.minStereoAgreement <= 1) ||
+      !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
+      !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
+    throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
   if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
     throw Error("tracker framesPerSecond must be positive");
 }
@@ -165,7 +167,11 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     for (const HandDetection& c : det.hands)
       if (!faceOrNeck(c.centroid) && cv::norm(c.centroid - h) <= o.reachFaceWidths * fw &&
           c.areaPx <= o.maxHandAreaFaces * fw * fw && c.areaPx >= o.minHandAreaFaces * fw * fw &&
-          c.radiusPx >= o.minHandRadiusFaces * fw && c.stereoAgreement >= o.minStereoAgreement)
+          c.radiusPx >= o.minHandRadiusFaces * fw &&
+          c.stereoAgreement >=
+              (c.areaPx < o.smallHandAreaFaces * fw * fw || c.radiusPx < o.smallHandRadiusFaces * fw
+                   ? o.smallHandMinAgreement
+                   : o.minStereoAgreement))
         candidates.push_back(&c);
     // Whether candidate j may be hand k: not far on the other hand's side.
     auto onSide = [&](int k, std::size_t j) {

@@ -36,15 +36,22 @@ struct TrackerOptions {
   // its area be between these many squared face widths (a hand is about
   // 0.27; larger: merged with clutter, smaller: a speck or a hand's edge).
   double reachFaceWidths = 7;
-  double minHandAreaFaces = 0.05;
+  double minHandAreaFaces = 0.02;
   double maxHandAreaFaces = 1.0;
   // ... and the largest disc inside it at least this many face widths in
   // radius (a hand's is about 0.2 once opened; slivers of wall let in by the
   // fattened silhouette are a few pixels thick).
-  double minHandRadiusFaces = 0.09;
+  double minHandRadiusFaces = 0.05;
   // ... and, where measured (the region), most of its pixels agreeing
   // between the views at their disparity (HandDetection::stereoAgreement).
   double minStereoAgreement = 0.7;
+  // A small candidate (under smallHandAreaFaces squared face widths or
+  // smallHandRadiusFaces of radius: a hand partly outside the zone, or a
+  // speck) needs this much agreement: the hand's pixels agree, a speck of
+  // wall that block matching pulled forward mostly does not.
+  double smallHandAreaFaces = 0.05;
+  double smallHandRadiusFaces = 0.09;
+  double smallHandMinAgreement = 0.9;
   // A solid hand candidate: at least this area (squared face widths) and
   // inscribed radius (face widths). A track on a weaker candidate, or on
   // none, moves to a free solid one on its side (0: never).

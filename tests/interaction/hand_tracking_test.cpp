@@ -96,7 +96,7 @@ TEST(HandTracking, ThinSliversAndStereoMismatchesAreNotHands) {
   // Only a thin sliver (a hand's area, 3 px thick) where the left hand rests,
   // and a blob whose pixels disagree between the views where the right one
   // rests.
-  const HandDetection sliver = hand(kLeftRest, 3, 1, 450);
+  const HandDetection sliver = hand(kLeftRest, 1.5f, 1, 450);
   tracker.update(frameWith(0, {sliver, hand(kRightRest, 12, 0.3f)}), body);
   EXPECT_FALSE(body.leftHand.tracked);
   EXPECT_FALSE(body.rightHand.tracked);
@@ -111,6 +111,19 @@ TEST(HandTracking, ThinSliversAndStereoMismatchesAreNotHands) {
 
 // A track that fell onto a speck (small, thin) when its hand outran the gate
 // moves to the whole hand, a solid candidate on its side.
+// A small candidate (a hand partly outside the zone, or a speck) is a hand
+// only where its pixels agree between the views.
+TEST(HandTracking, SmallCandidatesNeedStereoAgreement) {
+  BodyTracker tracker(immediateElection());
+  BodySample body;
+  const int small = static_cast<int>(0.03f * kFace * kFace);  // under 0.05 face widths squared
+  tracker.update(frameWith(0, {hand(kLeftRest, 0.07f * kFace, 0.95f, small),
+                               hand(kRightRest, 0.07f * kFace, 0.8f, small)}),
+                 body);
+  EXPECT_TRUE(body.leftHand.tracked) << "agreeing: a hand partly outside the zone";
+  EXPECT_FALSE(body.rightHand.tracked) << "80 % agreement is not enough for a small one";
+}
+
 TEST(HandTracking, ATrackOnASpeckMovesToTheSolidHand) {
   BodyTracker tracker(immediateElection());
   BodySample body;
