@@ -74,6 +74,33 @@ void coverage(const Camera& camera, const Primitive& p, RowIntervals& out) {
   }
 }
 
+namespace {
+
+constexpr int kRayBatch = 32;
+
+// The ray tests of pixels xb <= x < xe of a row (at most kRayBatch): the
+// rays and hits of the pixels where `p` is nearer than depth[x], and their
+// columns; returns how many. Each pixel is one long chain of dependent
+// operations, so callers test a batch, then shade or record its hits: two
+// short loops let the processor overlap neighbouring pixels.
+template <typename Test>
+int rayTestBatch(const Primitive& p, const Camera& camera, const double* columnX, double rowY,
+                 int xb, int xe, const double* depth, Ray* rays, Hit* hits, int* xs, Test test) {
+  if (p.shape == Primitive::Shape::Capsule)
+    return detail::capsuleRowHits(p, camera, columnX, rowY, xb, xe, depth, rays, hits, xs);
+  int n = 0;
+  for (int x = xb; x < xe; ++x) {
+    Ray& ray = rays[n];
+    ray.o = camera.centre;
+    ray.d = camera.rigToWorld.apply(Vec3{columnX[x], rowY, 1.0});
+    if (!test(p, ray, depth[x], hits[n])) continue;
+    xs[n++] = x;
+  }
+  return n;
+}
+
+}  // namespace
+
 cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, Layer& layer,
                 const RowIntervals* only, double stripes) {
   std::vector<Primitive> primitives = unprepared;
@@ -117,30 +144,16 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                 auto* colour = layer.colour.ptr<cv::Vec3b>(y);
                 auto* depth = layer.depth.ptr<double>(y);
                 const double rowY = (y - camera.cy) / camera.f;
-                // In batches: the ray tests of a batch, then the shading of its hits.
-                // Each pixel is one long chain of dependent operations; two short
-                // loops let the processor overlap neighbouring pixels. The result
-                // is the same as one loop: a primitive touches each pixel once.
-                constexpr int kBatch = 32;
-                Ray rays[kBatch];
-                Hit hits[kBatch];
-                int xs[kBatch];
-                for (int xb = x0; xb < x1; xb += kBatch) {
-                  const int xe = std::min(x1, xb + kBatch);
-                  int n = 0;
-                  if (p.shape == Primitive::Shape::Capsule) {
-                    n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
-                                               hits, xs);
-                  } else {
-                    for (int x = xb; x < xe; ++x) {
-                      Ray& ray = rays[n];
-                      ray.o = camera.centre;
-                      ray.d = camera.rigToWorld.apply(
-                          Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-                      if (!test(p, ray, depth[x], hits[n])) continue;
-                      xs[n++] = x;
-                    }
-                  }
+                // In batches: the ray tests of a batch, then the shading of its
+                // hits (rayTestBatch). The result is the same as one loop: a
+                // primitive touches each pixel once.
+                Ray rays[kRayBatch];
+                Hit hits[kRayBatch];
+                int xs[kRayBatch];
+                for (int xb = x0; xb < x1; xb += kRayBatch) {
+                  const int xe = std::min(x1, xb + kRayBatch);
+                  const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
+                                             hits, xs, test);
                   for (int k = 0; k < n; ++k) {
                     const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
                     depth[xs[k]] = hits[k].t;
@@ -210,29 +223,15 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             int x0 = r.x, x1 = r.x + r.width;
             if (capsuleRows[i] && !capsuleRows[i]->span(y, x0, x1)) continue;
             // Pixels a <= x < b, in batches: the ray tests, then the record
-            // of the hits (each pixel is one long chain of dependent
-            // operations; short loops let the processor overlap pixels).
+            // of the hits (rayTestBatch).
             auto testSpan = [&](int a, int b, auto test) {
-              constexpr int kBatch = 32;
-              Ray rays[kBatch];
-              Hit hits[kBatch];
-              int xs[kBatch];
-              for (int xb = a; xb < b; xb += kBatch) {
-                const int xe = std::min(b, xb + kBatch);
-                int n = 0;
-                if (p.shape == Primitive::Shape::Capsule) {
-                  n = detail::capsuleRowHits(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
-                                             hits, xs);
-                } else {
-                  for (int x = xb; x < xe; ++x) {
-                    Ray& ray = rays[n];
-                    ray.o = camera.centre;
-                    ray.d = camera.rigToWorld.apply(
-                        Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-                    if (!test(p, ray, depth[x], hits[n])) continue;
-                    xs[n++] = x;
-                  }
-                }
+              Ray rays[kRayBatch];
+              Hit hits[kRayBatch];
+              int xs[kRayBatch];
+              for (int xb = a; xb < b; xb += kRayBatch) {
+                const int xe = std::min(b, xb + kRayBatch);
+                const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
+                                           hits, xs, test);
                 for (int k = 0; k < n; ++k) {
                   const int x = xs[k];
                   depth[x] = hits[k].t;
