@@ -241,10 +241,14 @@ class Output {
     ++done_;
     const double seconds = std::chrono::duration<double>(SteadyClock::now() - start_).count();
     const double fps = seconds > 0 ? static_cast<double>(done_) / seconds : 0;
-    if (job_.until.empty()) {
+    const bool still = f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_;
+    // Drawing a view costs a few ms of CPU (text above all): only for the
+    // video, the window, the stills, and the last frame when the length is
+    // not known.
+    if (job_.until.empty() && (job_.video || job_.display || still || expected_ <= 0)) {
       const cv::Mat view = annotateFrame(f, job_.stereo, fps);
       if (job_.video) writeVideo(view);
-      if (f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_) {
+      if (still) {
         writeStill(view, f.index);
       } else {
         lastView_ = view;  // the last frame's still, once the run ends
