@@ -197,6 +197,9 @@ RunJob parseRun(Args& args) {
   // synthetic scene renders on the capture thread alone rather than adding
   // OpenCV's threads beside the front end's pool (oversubscribed cores).
   if (job.inFlight > 1) job.capture.scene.threads = 1;
+  // A run scores nothing against the truth's per-pixel maps (its view shows
+  // the head pose and the people's truth only): they are not computed.
+  job.capture.scene.pixelTruth = false;
   return job;
 }
 

@@ -96,7 +96,7 @@ SceneRenderer::SceneRenderer(const SceneOptions& options)
   // The room for the initial pose now, as a camera opens before its first
   // frame: a run's first frame then costs what the others do.
   updateStatic(options.initialHead);
-  updateStaticTruth(options.initialHead);
+  if (options.pixelTruth) updateStaticTruth(options.initialHead);
 }
 
 Camera SceneRenderer::camera(const HeadPose& head, int eye) const {
@@ -142,7 +142,7 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   if (frameIndex < 0)
     throw Error("synthetic scene frame index must be >= 0, got " + std::to_string(frameIndex));
   updateStatic(head);
-  updateStaticTruth(head);
+  if (options_.pixelTruth) updateStaticTruth(head);
   const double t = frameIndex / options_.framesPerSecond;
 
   std::vector<PersonPose> poses;
@@ -204,7 +204,9 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
   // d at most the largest disparity in the left view) fell where the right
   // view was drawn. The rest comes from the room's truth (a full frame) or
   // from the last frame (an incremental one).
-  if (incremental) {
+  if (!options_.pixelTruth) {
+    // No per-pixel truth: the maps stay empty.
+  } else if (incremental) {
     // Left pixels outside the redrawn ones keep their depth, so their
     // disparity is at most that of the nearest surface in the left view.
     double minDepth = 0;
@@ -232,9 +234,11 @@ SyntheticFrame SceneRenderer::render(int frameIndex, const HeadPose& head) {
     }
     pixelTruth(left, frame_[0], frame_[1], options_.baselineM, zone, dirty, frameTruth_, stripes());
   }
-  truth.disparity = frameTruth_.disparity.clone();
-  truth.inside = frameTruth_.inside.clone();
-  truth.occluded = frameTruth_.occluded.clone();
+  if (options_.pixelTruth) {
+    truth.disparity = frameTruth_.disparity.clone();
+    truth.inside = frameTruth_.inside.clone();
+    truth.occluded = frameTruth_.occluded.clone();
+  }
   framePrimitives_ = std::move(prims);
   frameHead_ = head;
   frameValid_ = true;

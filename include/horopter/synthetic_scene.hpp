@@ -64,6 +64,11 @@ struct SceneOptions {
   double sensorNoiseSigma = 0;  // Gaussian noise per pixel and channel (grey levels), per view
   double personDistanceM = 0;   // the main person's station depth, metres (0: 1.2-1.4 m by seed)
   bool skinClutter = false;     // skin-coloured panels on the back wall, a rug and a poster
+  // Per-pixel truth (FrameTruth's disparity, inside and occluded maps); off,
+  // those maps stay empty and a frame costs less (the images, the people's
+  // truth and the head pose are the same): for `horopter run`, which scores
+  // nothing against them.
+  bool pixelTruth = true;
   // Threads a frame is rendered on: 0, OpenCV's (cv::getNumThreads()); N,
   // at most N (1: the calling thread only, for a pipeline that already keeps
   // the other cores busy with other frames). The frames do not depend on it.

@@ -91,5 +91,34 @@ TEST(SyntheticIncremental, ThreadCountDoesNotChangeFrames) {
   EXPECT_THROW(SyntheticScene{bad}, Error);
 }
 
+// Without per-pixel truth, the same images and people's truth, frame after
+// frame and across head turns, and empty truth maps.
+TEST(SyntheticIncremental, WithoutPixelTruthTheImagesAreTheSame) {
+  SceneOptions without = smallScene();
+  without.pixelTruth = false;
+  SyntheticScene fast(without), full(smallScene());
+  HeadPose turned = smallScene().initialHead;
+  turned.pan = -0.05;
+  for (int index = 60; index < 66; ++index) {
+    if (index == 63) {
+      fast.commandHead(turned);
+      full.commandHead(turned);
+    }
+    const SyntheticFrame a = fast.render(index), b = full.render(index);
+    const std::string what = "frame " + std::to_string(index);
+    EXPECT_TRUE(sameMat(a.left, b.left)) << what;
+    EXPECT_TRUE(sameMat(a.right, b.right)) << what;
+    EXPECT_TRUE(a.truth.disparity.empty() && a.truth.inside.empty() && a.truth.occluded.empty())
+        << what;
+    EXPECT_FALSE(b.truth.disparity.empty()) << what;
+    ASSERT_EQ(a.truth.people.size(), b.truth.people.size()) << what;
+    for (std::size_t i = 0; i < a.truth.people.size(); ++i) {
+      EXPECT_EQ(a.truth.people[i].insideZone, b.truth.people[i].insideZone) << what;
+      EXPECT_EQ(a.truth.people[i].head2d, b.truth.people[i].head2d) << what;
+      EXPECT_EQ(a.truth.people[i].leftHand3d, b.truth.people[i].leftHand3d) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace horopter::synth
