@@ -59,6 +59,17 @@ const char* kEvalTrackingHelp =
     "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
     "                     to 0.7 m; nearer hands have no disparity, so no zone; a wider range\n"
     "                     also widens the band on the left the right view cannot match)\n"
+    "  --face-scale S     the face cascade runs on the image scaled by S once a face is\n"
+    "                     followed (default 0.75; 0.25..1)\n"
+    "  --acquisition-face-scale S  ... and by S while no face was found in the previous\n"
+    "                     frame (default 1: a face walking in is found frames earlier)\n"
+    "  --min-neighbors N  the cascade's grouping threshold (default 3)\n"
+    "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
+    "                     candidate on its side nearest to it (default 0.1; 0: never)\n"
+    "  --frame-hands      head control pans to frame the head and tracked hands, not only\n"
+    "                     the face (off by default: it measured worse)\n"
+    "  --hand-shift F     with --frame-hands, the most the framing moves the face, as a\n"
+    "                     fraction of the width (default 0.25)\n"
     "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
     "                     sizes the zone's disparities allow (slower; for comparison)\n"
     "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
@@ -126,6 +137,13 @@ int runEvalTracking(Args& args) {
       args.intValue("--follow-miss-frames", base.detector.followMissFrames);
   base.detector.exhaustiveSearchEvery =
       args.intValue("--exhaustive-search-every", base.detector.exhaustiveSearchEvery);
+  base.detector.faceScale = args.doubleValue("--face-scale", base.detector.faceScale);
+  base.detector.acquisitionFaceScale =
+      args.doubleValue("--acquisition-face-scale", base.detector.acquisitionFaceScale);
+  base.detector.minNeighbors = args.intValue("--min-neighbors", base.detector.minNeighbors);
+  base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
+  if (args.flag("--frame-hands")) base.head.frameHands = true;
+  base.head.maxHandShiftFraction = args.doubleValue("--hand-shift", base.head.maxHandShiftFraction);
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");

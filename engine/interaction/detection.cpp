@@ -17,8 +17,12 @@ const char* detectionScopeName(DetectionScope scope) {
 }
 
 struct Detector::Impl {
-  explicit Impl(const DetectorOptions& options) : faces(options) {}
+  explicit Impl(const DetectorOptions& options) : faces(options), acquiring(options) {
+    acquiring.faceScale = options.acquisitionFaceScale;
+  }
   detail::FaceSearch faces;
+  DetectorOptions acquiring;  // the options with the acquisition's face scale
+  bool facesFound = false;    // in the previous frame
   cv::Mat skin, grown, labels, stats, centroids, distance;
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
 };
@@ -36,6 +40,8 @@ Detector::Detector(DetectorOptions options) : options_(std::move(options)) {
   if (o.maskErodePx < -1 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 ||
       o.minHandAreaPx < 1)
     throw Error("mask growth, opening and closing must be >= 0 px and the hand area >= 1 px");
+  if (!(o.acquisitionFaceScale >= 0.25 && o.acquisitionFaceScale <= 1))
+    throw Error("the acquisition's face scale must be in [0.25, 1]");
   impl_ = std::make_unique<Impl>(o);  // checks the face options, loads the cascade
   if (o.openPx > 0) impl_->openKernel = ellipse(o.openPx);
   if (o.closePx > 0) impl_->closeKernel = ellipse(o.closePx);
@@ -84,7 +90,9 @@ Detections Detector::detect(const Frame& frame) {
   // the full face searches.
   o.skin.classify(colour, roi, m.skin);
   if (region) cv::bitwise_and(m.skin, m.grown, m.skin);
-  detail::FaceSearchResult faces = m.faces.find(o, frame, colour, roi, m.skin);
+  detail::FaceSearchResult faces =
+      m.faces.find(m.facesFound ? o : m.acquiring, frame, colour, roi, m.skin);
+  m.facesFound = !faces.faces.empty();
   d.faces = std::move(faces.faces);
   d.faceSizes = faces.faceSizes;
   d.fullFaceSearch = faces.fullSearch;

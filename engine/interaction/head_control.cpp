@@ -142,6 +142,8 @@ class HeadControlStage : public Stage {
     if (!(o.maxRateRadPerS > 0) || !(o.framesPerSecond > 0) || o.deadbandRad < 0)
       throw Error("head control rate and frame rate must be positive, the dead band >= 0");
     if (o.actuationDelayFrames < 1) throw Error("the actuation delay must be >= 1 frame");
+    if (!(o.maxHandShiftFraction >= 0 && o.maxHandShiftFraction <= 0.5))
+      throw Error("head control's hand shift must be a fraction of the width in [0, 0.5]");
     if (o.formula == PanTiltFormula::Paper && !(o.lambda > 0))
       throw Error("the paper's head formula needs lambda > 0");
   }
@@ -184,6 +186,19 @@ class HeadControlStage : public Stage {
     } else {
       return std::nullopt;
     }
+    // Frame the hands too: the middle of the head's and hands' extent where
+    // the face would be.
+    if (o_.frameHands && o_.focalPx > 0 && o_.imageWidth > 0) {
+      float lo = s.head.image.x, hi = lo;
+      for (const PartState* hand : {&s.leftHand, &s.rightHand})
+        if (hand->tracked) {
+          lo = std::min(lo, hand->image.x);
+          hi = std::max(hi, hand->image.x);
+        }
+      const double most = o_.maxHandShiftFraction * o_.imageWidth;
+      const double shift = std::clamp(0.5 * (lo + hi) - s.head.image.x, -most, most);
+      target.pan += std::atan(shift / o_.focalPx);
+    }
     // Hold the face above the centre: look down by the angle of that offset.
     if (o_.imageHeight > 0 && o_.focalPx > 0)
       target.tilt += std::atan((0.5 - o_.faceRowFraction) * o_.imageHeight / o_.focalPx);
@@ -212,6 +227,7 @@ std::unique_ptr<Stage> makeSyntheticHeadControlStage(HeadControlOptions options,
   options.cx = source.scene().cx();
   options.cy = source.scene().cy();
   options.imageHeight = source.scene().options().height;
+  options.imageWidth = source.scene().options().width;
   options.framesPerSecond = source.scene().options().framesPerSecond;
   std::shared_ptr<SyntheticRigHead> head = source.head();
   CapturePose pose = [](const Frame& f) -> std::optional<hw::HeadAngles> {

@@ -48,9 +48,9 @@ struct BodyTracker::Impl {
 namespace {
 
 void validate(const TrackerOptions& o) {
-  if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > o.minHandAreaFaces) ||
-      o.minHandAreaFaces < 0)
-    throw Error("tracker coast time must be >= 0 s, reach and hand area > 0");
+  if (!(o.coastS >= 0) || !(o.coastJumpS >= 0) || !(o.reachFaceWidths > 0) ||
+      !(o.maxHandAreaFaces > o.minHandAreaFaces) || o.minHandAreaFaces < 0)
+    throw Error("tracker coast and coast-jump times must be >= 0 s, reach and hand area > 0");
   if (!(o.minHandRadiusFaces >= 0) || !(o.crossFaceWidths >= 0) || !(o.solidHandAreaFaces >= 0) ||
       !(o.solidHandRadiusFaces >= 0) || !(o.headBlobFaceWidths >= 0))
     throw Error(
@@ -237,6 +237,24 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       for (std::size_t j = 0; j < candidates.size(); ++j) {
         const double d = cv::norm(candidates[j]->centroid - m.lastSeen[k]);
         if (!taken[j] && onSide(k, j) && d <= bestD) best = j, bestD = d;
+      }
+      if (best < candidates.size()) {
+        m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
+        m.lastSeen[k] = candidates[best]->centroid;
+        updated[k] = taken[best] = true;
+      }
+    }
+    // A track that has coasted for a while (the hand jumped out of its gate
+    // and reach, a pointing arm say) gives way to the free candidate on its
+    // side nearest to it, rather than waiting to be dropped.
+    for (int k = 0; k < 2 && o.coastJumpS > 0; ++k) {
+      if (!m.hands[k] || updated[k] || t - m.hands[k]->lastUpdateS() <= o.coastJumpS) continue;
+      std::size_t best = candidates.size();
+      double bestD = 0;
+      for (std::size_t j = 0; j < candidates.size(); ++j) {
+        const double d = cv::norm(candidates[j]->centroid - m.hands[k]->position());
+        if (!taken[j] && onSide(k, j) && (best == candidates.size() || d < bestD))
+          best = j, bestD = d;
       }
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);

@@ -32,6 +32,9 @@ struct TrackerOptions {
   // detection.
   double coastVelocityDamping = 0.5;
   double coastS = 0.4;  // a track without detections is dropped after this long
+  // A hand track without detections for longer than this moves to the free
+  // candidate on its side nearest to it (0: never; it waits to be dropped).
+  double coastJumpS = 0.1;
   // A hand candidate must lie within this many face widths of the head, and
   // its area be between these many squared face widths (a hand is about
   // 0.27; larger: merged with clutter, smaller: a speck or a hand's edge).

@@ -221,6 +221,9 @@ TEST(Detection, BadInputIsAnError) {
   o = DetectorOptions{};
   o.exhaustiveSearchEvery = -1;
   EXPECT_THROW(Detector{o}, Error);
+  o = DetectorOptions{};
+  o.acquisitionFaceScale = 2;
+  EXPECT_THROW(Detector{o}, Error);
   Detector detector(DetectorOptions{});
   Frame frame;
   frame.left = cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(90));

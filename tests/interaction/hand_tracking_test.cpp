@@ -164,6 +164,35 @@ TEST(HandTracking, TheHeadFollowsItsSkinBlobWhenTheFaceIsMissed) {
   EXPECT_TRUE(near(body.rightHand.image, kRightRest));
 }
 
+// A hand that jumps out of its gate and reach (an arm stretched out to
+// point) onto a candidate too small to move a track at once: the track
+// coasts for coastJumpS, then moves there, rather than waiting to be
+// dropped.
+TEST(HandTracking, ACoastingTrackMovesToTheCandidateOnItsSide) {
+  const cv::Point2f pointing(kHead.x - 4.0f * kFace, kHead.y + 0.5f * kFace);
+  const HandDetection small =
+      hand(pointing, 0.1f * kFace, 1, static_cast<int>(0.06f * kFace * kFace));
+  for (const double jumpS : {0.1, 0.0}) {
+    TrackerOptions o = immediateElection();
+    o.coastJumpS = jumpS;
+    BodyTracker tracker(o);
+    BodySample body;
+    tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+    ASSERT_TRUE(near(body.rightHand.image, kRightRest));
+    for (int i = 1; i <= 5; ++i) {
+      tracker.update(frameWith(i, {hand(kLeftRest), small}), body);
+      ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
+      // 30 frames/s: frame 4 is the first more than 0.1 s after the last
+      // update (frame 3, exactly 0.1 s, is left out).
+      if (i == 3) continue;
+      const bool moved = jumpS > 0 && i >= 4;
+      EXPECT_EQ(near(body.rightHand.image, pointing), moved)
+          << "jump " << jumpS << " frame " << i << " at " << body.rightHand.image;
+    }
+    EXPECT_TRUE(near(body.leftHand.image, kLeftRest));
+  }
+}
+
 TEST(HandTracking, BadOptionsAreErrors) {
   TrackerOptions o;
   o.minHandRadiusFaces = -1;
@@ -176,6 +205,9 @@ TEST(HandTracking, BadOptionsAreErrors) {
   EXPECT_THROW(BodyTracker{o}, Error);
   o = TrackerOptions{};
   o.headBlobFaceWidths = -1;
+  EXPECT_THROW(BodyTracker{o}, Error);
+  o = TrackerOptions{};
+  o.coastJumpS = -0.1;
   EXPECT_THROW(BodyTracker{o}, Error);
 }
 

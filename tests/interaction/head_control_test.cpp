@@ -1,12 +1,16 @@
 // Head angles: atan2 on known 3-D points, the paper's formula, the limits,
-// and the synthetic rig's actuation delay.
+// framing the hands, and the synthetic rig's actuation delay.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numbers>
+#include <optional>
 
 #include "horopter/error.hpp"
 #include "horopter/head_control.hpp"
+#include "horopter/tracking.hpp"
 
 namespace horopter {
 namespace {
@@ -79,6 +83,65 @@ TEST(HeadAngles, CommandIsDeadBandedRateLimitedAndClamped) {
   o.gain = 0.5;
   c = limitCommand(pose, {0.3, 0.0, 0}, o);
   EXPECT_NEAR(c.pan, 0.2, 1e-12);
+}
+
+// The pan the head-control stage commands for a godfather whose head lies
+// straight ahead (atan2 target 0) at `headX` in the image, with hands at
+// `rightX` and `leftX` (NaN: not tracked).
+double commandedPan(HeadControlOptions o, float headX, float rightX, float leftX) {
+  o.gain = 1;
+  o.deadbandRad = 0;
+  o.maxRateRadPerS = 100;
+  o.focalPx = 500;
+  o.cx = 320;
+  o.cy = 240;
+  o.imageWidth = 640;
+  std::optional<hw::HeadAngles> sent;
+  auto stage = makeHeadControlStage(
+      o,
+      [](const Frame&) {
+        return std::optional<hw::HeadAngles>(hw::HeadAngles{0, 0, 0.06});
+      },
+      [&](std::int64_t, const std::optional<hw::HeadAngles>& c) { sent = c; });
+  auto state = std::make_shared<TrackingState>();
+  state->election = ElectionState::Godfather;
+  state->head.tracked = state->head.observed = true;
+  state->head.image = {headX, 200};
+  state->head.rig = {0, 0, 1.5};  // on the axis: atan2 alone commands nothing
+  if (!std::isnan(rightX)) {
+    state->rightHand.tracked = true;
+    state->rightHand.image = {rightX, 300};
+  }
+  if (!std::isnan(leftX)) {
+    state->leftHand.tracked = true;
+    state->leftHand.image = {leftX, 300};
+  }
+  Frame frame;
+  frame.tracking = state;
+  stage->process(frame);
+  return sent ? sent->pan : 0.0;
+}
+
+TEST(HeadControlStage, FramesTheHandsExtentWithinALimit) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  HeadControlOptions o;
+  o.frameHands = true;
+  // No hands, or hands balanced about the face: the face alone decides.
+  EXPECT_NEAR(commandedPan(o, 345, nan, nan), 0, 1e-9);
+  EXPECT_NEAR(commandedPan(o, 345, 245, 445), 0, 1e-6);
+  // The right hand stretched out to the image's left: the extent's middle
+  // (130 + 385) / 2 = 257.5 goes where the face is, 87.5 px to the left.
+  EXPECT_NEAR(commandedPan(o, 345, 130, 385), std::atan(-87.5 / 500), 1e-6);
+  // Far out: at most a quarter of the width (160 px).
+  EXPECT_NEAR(commandedPan(o, 345, -600, 385), std::atan(-160.0 / 500), 1e-6);
+  o.maxHandShiftFraction = 0.1;
+  EXPECT_NEAR(commandedPan(o, 345, -600, 385), std::atan(-64.0 / 500), 1e-6);
+  o.frameHands = false;
+  EXPECT_NEAR(commandedPan(o, 345, 130, 385), 0, 1e-9);
+  EXPECT_FALSE(HeadControlOptions{}.frameHands) << "off by default";
+  o.frameHands = true;
+  o.maxHandShiftFraction = 0.6;
+  EXPECT_THROW(commandedPan(o, 345, 130, 385), Error);
 }
 
 TEST(SyntheticRigHead, ACommandFromFrameNActsAtFrameNPlusTheDelay) {
