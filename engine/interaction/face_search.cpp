@@ -60,6 +60,8 @@ FaceSearch::FaceSearch(const DetectorOptions& o) {
         o.depthFacePercentiles[1] <= 1) ||
       !(o.depthFaceMargin >= 1))
     throw Error("depth face sizes need percentiles 0 <= far <= near <= 1 and a margin >= 1");
+  if (!(o.faceZoneCover >= 0 && o.faceZoneCover <= 1))
+    throw Error("faceZoneCover (the zone's share of a face's centre) must be in [0, 1]");
   if (o.minFacePx != 0 && o.minFacePx < 20)
     throw Error(
         "the smallest face must be >= 20 px (the cascade's window), or 0 for a 16th of the width");
@@ -195,7 +197,9 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const Frame& frame,
     boxes = std::move(unique);
   };
   // Whether a box the cascade found is kept (the region keeps the zone's).
-  auto kept = [&](const cv::Rect& b) { return !region || zoneCover(frame.mask, b) >= 0.3; };
+  auto kept = [&](const cv::Rect& b) {
+    return !region || zoneCover(frame.mask, b) >= o.faceZoneCover;
+  };
   const bool follow = !followed_.empty() && sinceFullSearch_ + 1 < o.fullSearchEvery;
   bool searchAll = !follow;
   if (follow) {
@@ -238,7 +242,7 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const Frame& frame,
     f.box = b;
     f.centre = cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height);
     f.width = static_cast<float>(b.width);
-    f.insideZone = zoneCover(frame.mask, b) >= 0.3;
+    f.insideZone = zoneCover(frame.mask, b) >= o.faceZoneCover;
     if (!kept(b)) continue;  // the region holds the zone only
     result.faces.push_back(f);
   }

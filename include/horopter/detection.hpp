@@ -74,6 +74,9 @@ struct DetectorOptions {
   bool depthFaceSizes = true;
   double depthFacePercentiles[2] = {0.1, 0.9};
   double depthFaceMargin = 1.4;
+  // A face is inside the zone when the mask covers at least this fraction of
+  // its central half (the region keeps only those), in [0, 1].
+  double faceZoneCover = 0.3;
   // Region: the mask is closed with a disc this wide (0: not), then eroded
   // by maskErodePx: block matching fattens the foreground by about half its
   // block, so a rim of the background behind the silhouette (skin-coloured
