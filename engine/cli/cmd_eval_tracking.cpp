@@ -64,6 +64,8 @@ const char* kEvalTrackingHelp =
     "  --acquisition-face-scale S  ... and by S while no face was found in the previous\n"
     "                     frame (default 1: a face walking in is found frames earlier)\n"
     "  --min-neighbors N  the cascade's grouping threshold (default 3)\n"
+    "  --face-zone-cover F  a face is inside the zone when the mask covers this fraction\n"
+    "                     of its central half (default 0.3)\n"
     "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
     "                     candidate on its side nearest to it (default 0.1; 0: never)\n"
     "  --frame-hands      head control pans to frame the head and tracked hands, not only\n"
@@ -141,6 +143,7 @@ int runEvalTracking(Args& args) {
   base.detector.acquisitionFaceScale =
       args.doubleValue("--acquisition-face-scale", base.detector.acquisitionFaceScale);
   base.detector.minNeighbors = args.intValue("--min-neighbors", base.detector.minNeighbors);
+  base.detector.faceZoneCover = args.doubleValue("--face-zone-cover", base.detector.faceZoneCover);
   base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
   if (args.flag("--frame-hands")) base.head.frameHands = true;
   base.head.maxHandShiftFraction = args.doubleValue("--hand-shift", base.head.maxHandShiftFraction);
