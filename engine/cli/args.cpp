@@ -116,8 +116,8 @@ MedianParams parseMedianFlags(Args& args, MedianParams m) {
   return m;
 }
 
-int parseThreads(Args& args) {
-  const int fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+int parseThreads(Args& args, int fallback) {
+  if (fallback < 1) fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = args.intValue("--threads", fallback);
   if (threads < 1 || threads > 256)
     throw Error("--threads must be within 1..256, got " + std::to_string(threads));

@@ -35,7 +35,8 @@ class Args {
 StereoParams parseStereoFlags(Args& args, StereoParams defaults);
 MedianParams parseMedianFlags(Args& args, MedianParams defaults);
 // --threads N: 1..256, default all hardware threads.
-int parseThreads(Args& args);
+// --threads, 1..256; `fallback` when absent (0: all cores).
+int parseThreads(Args& args, int fallback = 0);
 // Help text for those flags, with the defaults.
 std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median);
 
