@@ -224,6 +224,9 @@ TEST(Detection, BadInputIsAnError) {
   o = DetectorOptions{};
   o.acquisitionFaceScale = 2;
   EXPECT_THROW(Detector{o}, Error);
+  o = DetectorOptions{};
+  o.faceZoneCover = 1.5;
+  EXPECT_THROW(Detector{o}, Error);
   Detector detector(DetectorOptions{});
   Frame frame;
   frame.left = cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(90));
