@@ -161,7 +161,7 @@ RunJob parseRun(Args& args) {
   // with the neighbouring frames, so the front end's pool takes the other
   // cores (a pool as wide as the machine would share a core with them and
   // wait on its slowest stripe). On 2 cores, `--until mask --in-flight 3`:
-  // 192-214 frames/s with one thread against 162-202 with two.
+  // 184-214 frames/s with one thread against 162-202 with two.
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   job.threads = parseThreads(args, job.inFlight > 1 ? std::max(1, cores - 1) : cores);
   job.liveGiven = job.live = args.flag("--live");
