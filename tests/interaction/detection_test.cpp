@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -209,24 +211,20 @@ TEST(Detection, HandCandidatesCarryStereoAgreementAndRadius) {
 
 TEST(Detection, BadInputIsAnError) {
   if (!std::filesystem::exists(kDefaultFaceCascade)) GTEST_SKIP() << "opencv-data missing";
-  DetectorOptions o;
-  o.faceCascade = "/nonexistent/cascade.xml";
-  EXPECT_THROW(Detector{o}, Error);
-  o = DetectorOptions{};
-  o.scaleFactor = 1.0;
-  EXPECT_THROW(Detector{o}, Error);
-  o = DetectorOptions{};
-  o.fullSearchEvery = 0;
-  EXPECT_THROW(Detector{o}, Error);
-  o = DetectorOptions{};
-  o.exhaustiveSearchEvery = -1;
-  EXPECT_THROW(Detector{o}, Error);
-  o = DetectorOptions{};
-  o.acquisitionFaceScale = 2;
-  EXPECT_THROW(Detector{o}, Error);
-  o = DetectorOptions{};
-  o.faceZoneCover = 1.5;
-  EXPECT_THROW(Detector{o}, Error);
+  // Each entry spoils one option of the defaults.
+  const std::vector<std::function<void(DetectorOptions&)>> spoilers = {
+      [](DetectorOptions& o) { o.faceCascade = "/nonexistent/cascade.xml"; },
+      [](DetectorOptions& o) { o.scaleFactor = 1.0; },
+      [](DetectorOptions& o) { o.fullSearchEvery = 0; },
+      [](DetectorOptions& o) { o.exhaustiveSearchEvery = -1; },
+      [](DetectorOptions& o) { o.acquisitionFaceScale = 2; },
+      [](DetectorOptions& o) { o.faceZoneCover = 1.5; },
+  };
+  for (std::size_t i = 0; i < spoilers.size(); ++i) {
+    DetectorOptions o;
+    spoilers[i](o);
+    EXPECT_THROW(Detector{o}, Error) << "bad option #" << i;
+  }
   Detector detector(DetectorOptions{});
   Frame frame;
   frame.left = cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(90));

@@ -4,7 +4,9 @@
 // and the head follows its skin blob when the face is missed.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
+#include <vector>
 
 #include "horopter/error.hpp"
 #include "horopter/tracking.hpp"
@@ -194,21 +196,19 @@ TEST(HandTracking, ACoastingTrackMovesToTheCandidateOnItsSide) {
 }
 
 TEST(HandTracking, BadOptionsAreErrors) {
-  TrackerOptions o;
-  o.minHandRadiusFaces = -1;
-  EXPECT_THROW(BodyTracker{o}, Error);
-  o = TrackerOptions{};
-  o.crossFaceWidths = -0.1;
-  EXPECT_THROW(BodyTracker{o}, Error);
-  o = TrackerOptions{};
-  o.minStereoAgreement = 1.5;
-  EXPECT_THROW(BodyTracker{o}, Error);
-  o = TrackerOptions{};
-  o.headBlobFaceWidths = -1;
-  EXPECT_THROW(BodyTracker{o}, Error);
-  o = TrackerOptions{};
-  o.coastJumpS = -0.1;
-  EXPECT_THROW(BodyTracker{o}, Error);
+  // Each entry spoils one option of the defaults.
+  const std::vector<std::function<void(TrackerOptions&)>> spoilers = {
+      [](TrackerOptions& o) { o.minHandRadiusFaces = -1; },
+      [](TrackerOptions& o) { o.crossFaceWidths = -0.1; },
+      [](TrackerOptions& o) { o.minStereoAgreement = 1.5; },
+      [](TrackerOptions& o) { o.headBlobFaceWidths = -1; },
+      [](TrackerOptions& o) { o.coastJumpS = -0.1; },
+  };
+  for (std::size_t i = 0; i < spoilers.size(); ++i) {
+    TrackerOptions o;
+    spoilers[i](o);
+    EXPECT_THROW(BodyTracker{o}, Error) << "bad option #" << i;
+  }
 }
 
 }  // namespace
