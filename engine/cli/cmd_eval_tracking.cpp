@@ -68,10 +68,16 @@ const char* kEvalTrackingHelp =
     "                     of its central half (default 0.3)\n"
     "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
     "                     candidate on its side nearest to it (default 0.1; 0: never)\n"
+    "  --blind-follow-s T  where stereo is blind (left of what the right camera sees, or\n"
+    "                     nearer than the range), a hand missed by the detector follows its\n"
+    "                     last detected look for up to T s (default 1; 0: never)\n"
+    "  --blind-min-score S  ... where the look correlates by at least S (default 0.7)\n"
     "  --frame-hands      head control pans to frame the head and tracked hands, not only\n"
     "                     the face (off by default: it measured worse)\n"
     "  --hand-shift F     with --frame-hands, the most the framing moves the face, as a\n"
     "                     fraction of the width (default 0.25)\n"
+    "  --no-follow-head-turns  the hand and head tracks stay where they were in the\n"
+    "                     image when the head turns (by default they move with the image)\n"
     "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
     "                     sizes the zone's disparities allow (slower; for comparison)\n"
     "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
@@ -145,7 +151,10 @@ int runEvalTracking(Args& args) {
   base.detector.minNeighbors = args.intValue("--min-neighbors", base.detector.minNeighbors);
   base.detector.faceZoneCover = args.doubleValue("--face-zone-cover", base.detector.faceZoneCover);
   base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
+  base.tracker.blindFollowS = args.doubleValue("--blind-follow-s", base.tracker.blindFollowS);
+  base.tracker.blindMinScore = args.doubleValue("--blind-min-score", base.tracker.blindMinScore);
   if (args.flag("--frame-hands")) base.head.frameHands = true;
+  if (args.flag("--no-follow-head-turns")) base.followHeadTurns = false;
   base.head.maxHandShiftFraction = args.doubleValue("--hand-shift", base.head.maxHandShiftFraction);
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");

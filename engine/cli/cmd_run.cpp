@@ -356,6 +356,7 @@ int runPipeline(Args& args) {
   TrackerOptions tracker;
   tracker.election = job.election;
   tracker.captureTime = job.live;
+  tracker.maxDisparityPx = job.stereo.minDisparity + job.stereo.numDisparities - 1;
   if (!job.calib.empty()) {
     std::tie(rectify, thresholds) = calibrated(job);
     tracker.rig = rectifiedGeometry(loadStereoCalibration(job.calib));
@@ -394,6 +395,7 @@ int runPipeline(Args& args) {
     detector.scope =
         job.detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
     pipeline.add(makeDetectionStage(detector));
+    if (loop) tracker.capturePose = syntheticCapturePose();
     pipeline.add(makeTrackingStage(tracker));
     if (loop) {
       HeadControlOptions head;

@@ -10,16 +10,49 @@
 
 namespace horopter {
 
-hw::HeadAngles anglesToCentre(const cv::Point3f& p, const hw::HeadAngles& pose) {
-  // The head's base frame: world = Ry(pan) Rx(tilt) rig (synthetic_scene.hpp).
+namespace {
+
+struct Point3 {
+  double x, y, z;
+};
+
+// The head's base frame: world = Ry(pan) Rx(tilt) rig (synthetic_scene.hpp).
+Point3 rigToBase(const Point3& p, const hw::HeadAngles& pose) {
   const double ct = std::cos(pose.tilt), st = std::sin(pose.tilt);
   const double cp = std::cos(pose.pan), sp = std::sin(pose.pan);
   const double y1 = ct * p.y + st * p.z, z1 = -st * p.y + ct * p.z;  // Rx(tilt)
-  const double xw = cp * p.x + sp * z1, zw = -sp * p.x + cp * z1;    // Ry(pan)
+  return {cp * p.x + sp * z1, y1, -sp * p.x + cp * z1};              // Ry(pan)
+}
+
+// The inverse: rig = Rx(tilt)^T Ry(pan)^T world.
+Point3 baseToRig(const Point3& w, const hw::HeadAngles& pose) {
+  const double ct = std::cos(pose.tilt), st = std::sin(pose.tilt);
+  const double cp = std::cos(pose.pan), sp = std::sin(pose.pan);
+  const double x1 = cp * w.x - sp * w.z, z1 = sp * w.x + cp * w.z;  // Ry(pan)^T
+  return {x1, ct * w.y - st * z1, st * w.y + ct * z1};              // Rx(tilt)^T
+}
+
+}  // namespace
+
+hw::HeadAngles anglesToCentre(const cv::Point3f& p, const hw::HeadAngles& pose) {
+  const Point3 w = rigToBase({p.x, p.y, p.z}, pose);
   hw::HeadAngles a = pose;
-  a.pan = std::atan2(xw, zw);
-  a.tilt = std::atan2(y1, std::hypot(xw, zw));
+  a.pan = std::atan2(w.x, w.z);
+  a.tilt = std::atan2(w.y, std::hypot(w.x, w.z));
   return a;
+}
+
+cv::Point2f pixelAfterHeadTurn(cv::Point2f pixel, double depthM, const hw::HeadAngles& from,
+                               const hw::HeadAngles& to, const RectifiedGeometry& rig) {
+  if (!(rig.focalPx > 0) || !(depthM > 0) || !std::isfinite(depthM)) return pixel;
+  // The left camera sits at (-B/2, 0, 0) in the rig frame.
+  const double half = 0.5 * rig.baseline, f = rig.focalPx;
+  const Point3 seen{(pixel.x - rig.cx) * depthM / f - half, (pixel.y - rig.cy) * depthM / f,
+                    depthM};
+  const Point3 now = baseToRig(rigToBase(seen, from), to);
+  if (!(now.z > 1e-6)) return pixel;
+  return {static_cast<float>(f * (now.x + half) / now.z + rig.cx),
+          static_cast<float>(f * now.y / now.z + rig.cy)};
 }
 
 double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda) {
@@ -214,6 +247,14 @@ class HeadControlStage : public Stage {
 
 }  // namespace
 
+CapturePose syntheticCapturePose() {
+  return [](const Frame& f) -> std::optional<hw::HeadAngles> {
+    const auto* t = std::any_cast<synth::FrameTruth>(&f.truth);
+    if (!t) return std::nullopt;
+    return hw::HeadAngles{t->head.pan, t->head.tilt, t->head.vergence};
+  };
+}
+
 std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options, CapturePose pose,
                                             HeadCommandSink sink) {
   return std::make_unique<HeadControlStage>(options, std::move(pose), std::move(sink));
@@ -230,15 +271,10 @@ std::unique_ptr<Stage> makeSyntheticHeadControlStage(HeadControlOptions options,
   options.imageWidth = source.scene().options().width;
   options.framesPerSecond = source.scene().options().framesPerSecond;
   std::shared_ptr<SyntheticRigHead> head = source.head();
-  CapturePose pose = [](const Frame& f) -> std::optional<hw::HeadAngles> {
-    const auto* t = std::any_cast<synth::FrameTruth>(&f.truth);
-    if (!t) return std::nullopt;
-    return hw::HeadAngles{t->head.pan, t->head.tilt, t->head.vergence};
-  };
   HeadCommandSink sink = [head](std::int64_t frame, const std::optional<hw::HeadAngles>& c) {
     head->post(frame, c);
   };
-  return makeHeadControlStage(options, pose, sink);
+  return makeHeadControlStage(options, syntheticCapturePose(), sink);
 }
 
 }  // namespace horopter

@@ -69,4 +69,9 @@ void ConstantVelocityTrack::dampVelocity(double factor) {
   x_(3) *= factor;
 }
 
+void ConstantVelocityTrack::shift(cv::Point2f delta) {
+  x_(0) += delta.x;
+  x_(1) += delta.y;
+}
+
 }  // namespace horopter

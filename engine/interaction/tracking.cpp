@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include "blind_follow.hpp"
 #include "horopter/error.hpp"
+#include "horopter/head_control.hpp"
 
 namespace horopter {
 
@@ -40,12 +43,20 @@ struct BodyTracker::Impl {
   GodfatherElection election;
   std::optional<ConstantVelocityTrack> head, hands[2];  // hands: [0] left, [1] right (the person's)
   cv::Point2f lastSeen[2];                              // where each hand was last observed
+  detail::PatchFollower looks[2];  // each hand's last detected patch, for where stereo is blind
+  double lastDetectedS[2] = {0, 0};
+  double handDisparity[2] = {0, 0};  // px, where last detected (0: unknown)
   float faceWidth = 0;
+  std::optional<hw::HeadAngles> lastPose;  // the previous frame's, with capturePose
+  double headDepthM = 0;                   // the head's last measured depth (0: none yet)
   bool haveStart = false;
   SteadyClock::time_point start{};
 };
 
 namespace {
+
+// The depth a turn is undone at before the head's depth is measured.
+constexpr double kUnknownDepthM = 1.5;
 
 void validate(const TrackerOptions& o) {
   if (!(o.coastS >= 0) || !(o.coastJumpS >= 0) || !(o.reachFaceWidths > 0) ||
@@ -59,6 +70,13 @@ void validate(const TrackerOptions& o) {
       !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
       !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
     throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
+  if (!(o.blindFollowS >= 0) || !(o.blindBandFaces >= 0) || !(o.blindNearFraction > 0) ||
+      !(o.blindValidFraction >= 0 && o.blindValidFraction <= 1) || !(o.blindPatchFaces > 0) ||
+      !(o.blindSearchFaces > 0) || !(o.blindMinScore >= -1 && o.blindMinScore <= 1) ||
+      !(o.maxDisparityPx >= 0))
+    throw Error(
+        "tracker blind following needs times, band and largest disparity >= 0, a near fraction, "
+        "patch and search sizes > 0, a valid fraction in [0, 1] and a score in [-1, 1]");
   if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
     throw Error("tracker framesPerSecond must be positive");
 }
@@ -86,6 +104,74 @@ BodyTracker::BodyTracker(TrackerOptions options) : options_(options) {
 BodyTracker::~BodyTracker() = default;
 BodyTracker::BodyTracker(BodyTracker&&) noexcept = default;
 
+void BodyTracker::followHeadTurn(const Frame& frame) {
+  Impl& m = *impl_;
+  if (!options_.capturePose) return;
+  const std::optional<hw::HeadAngles> pose = options_.capturePose(frame);
+  if (!pose) return;
+  const std::optional<hw::HeadAngles> from = std::exchange(m.lastPose, pose);
+  if (!from || (from->pan == pose->pan && from->tilt == pose->tilt)) return;
+  // Every tracked part is taken at the head's depth: the hands are within
+  // an arm's length of it, and a turn moves near and far points alike but
+  // for the cameras' small offset from the turning axis.
+  const double depth = m.headDepthM > 0 ? m.headDepthM : kUnknownDepthM;
+  const auto moved = [&](cv::Point2f p) {
+    return pixelAfterHeadTurn(p, depth, *from, *pose, options_.rig);
+  };
+  for (auto* track : {&m.head, &m.hands[0], &m.hands[1]})
+    if (*track) (*track)->shift(moved((*track)->position()) - (*track)->position());
+  for (cv::Point2f& seen : m.lastSeen)
+    seen = moved(seen);
+}
+
+bool BodyTracker::followBlind(int k, const Frame& frame, cv::Point2f head, double fw, double t) {
+  Impl& m = *impl_;
+  const TrackerOptions& o = options_;
+  if (o.blindFollowS <= 0 || m.looks[k].empty() || t - m.lastDetectedS[k] > o.blindFollowS)
+    return false;
+  const cv::Point2f predicted = m.hands[k]->position();
+  const double d = m.handDisparity[k];
+  const bool outOfRightView = d > 0 && predicted.x < d + o.blindBandFaces * fw;
+  const bool tooNear = d > 0 && o.maxDisparityPx > 0 && d > o.blindNearFraction * o.maxDisparityPx;
+  // ... and where the front end indeed found no depth: a blob of clutter
+  // that block matching pulled forward beside a near arm is not blind.
+  const int third = std::max(1, static_cast<int>(fw / 3));
+  if ((!outOfRightView && !tooNear) ||
+      detail::validDisparityFraction(frame.disparity, predicted, third) >= o.blindValidFraction)
+    return false;
+  const std::optional<cv::Point2f> at =
+      m.looks[k].find(frame.leftGrey, predicted, m.lastSeen[k],
+                      std::max(1, static_cast<int>(o.blindSearchFaces * fw)), o.blindMinScore);
+  const double side = k == 0 ? 1.0 : -1.0;  // the person's left hand is on the image's right
+  if (!at || (at->x - head.x) * side < -o.crossFaceWidths * fw) return false;
+  m.hands[k]->update(*at);
+  m.lastSeen[k] = *at;
+  return true;
+}
+
+void BodyTracker::rememberLook(int k, const HandDetection* detected, const Frame& frame, double fw,
+                               double t) {
+  Impl& m = *impl_;
+  const TrackerOptions& o = options_;
+  if (!m.hands[k]) {
+    m.looks[k].forget();
+    return;
+  }
+  // A small candidate (a hand partly out of the zone, or a speck of clutter
+  // that took a near arm's disparity) keeps the last whole hand's look.
+  if (!detected || detected->areaPx < o.smallHandAreaFaces * fw * fw ||
+      detected->radiusPx < o.smallHandRadiusFaces * fw)
+    return;
+  const cv::Point2f at = detected->centroid;
+  m.looks[k].remember(frame.leftGrey, at, std::max(3, static_cast<int>(o.blindPatchFaces * fw)));
+  m.lastDetectedS[k] = t;
+  const int half = std::max(1, static_cast<int>(0.15 * fw));
+  const cv::Point3f p = rigPointFromDisparity(
+      frame.disparity, o.rig, at,
+      cv::Rect(cvRound(at.x) - half, cvRound(at.y) - half, 2 * half + 1, 2 * half + 1));
+  m.handDisparity[k] = std::isfinite(p.z) && p.z > 0 ? o.rig.focalPx * o.rig.baseline / p.z : 0;
+}
+
 TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
   if (!frame.detections)
     throw Error("tracking needs Frame::detections: run the detection stage first");
@@ -100,6 +186,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     }
     t = std::chrono::duration<double>(frame.captured - m.start).count();
   }
+  followHeadTurn(frame);
   for (auto* track : {&m.head, &m.hands[0], &m.hands[1]})
     if (*track) (*track)->predict(t);
 
@@ -197,13 +284,21 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
     });
     bool updated[2] = {false, false};
     std::size_t assigned[2] = {candidates.size(), candidates.size()};
+    const HandDetection* detectedBy[2] = {nullptr, nullptr};  // this frame's candidate
     for (const Pair& p : pairs) {
       if (updated[p.track] || taken[p.candidate]) continue;
       m.hands[p.track]->update(candidates[p.candidate]->centroid);
       m.lastSeen[p.track] = candidates[p.candidate]->centroid;
+      detectedBy[p.track] = candidates[p.candidate];
       updated[p.track] = taken[p.candidate] = true;
       assigned[p.track] = p.candidate;
     }
+    // Where stereo is blind, a hand missed by the detector is followed by
+    // its look, before the steps below move it elsewhere.
+    bool followedBlind[2] = {false, false};
+    for (int k = 0; k < 2; ++k)
+      if (m.hands[k] && !updated[k])
+        updated[k] = followedBlind[k] = followBlind(k, frame, h, fw, t);
     // A track held by a weak candidate (a speck of clutter it fell onto when
     // the hand outran its gate), or by none, moves to a free solid one on
     // its side: a whole hand is both larger and rounder than the specks.
@@ -212,7 +307,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
              candidates[j]->radiusPx >= o.solidHandRadiusFaces * fw;
     };
     for (int k = 0; k < 2 && o.solidHandAreaFaces > 0; ++k) {
-      if (!m.hands[k] || (updated[k] && solid(assigned[k]))) continue;
+      if (!m.hands[k] || followedBlind[k] || (updated[k] && solid(assigned[k]))) continue;
       std::size_t best = candidates.size();
       double bestD = 0;
       for (std::size_t j = 0; j < candidates.size(); ++j) {
@@ -224,6 +319,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       if (updated[k]) taken[assigned[k]] = false;
       m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
       m.lastSeen[k] = candidates[best]->centroid;
+      detectedBy[k] = candidates[best];
       updated[k] = taken[best] = true;
       assigned[k] = best;
     }
@@ -241,6 +337,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
         m.lastSeen[k] = candidates[best]->centroid;
+        detectedBy[k] = candidates[best];
         updated[k] = taken[best] = true;
       }
     }
@@ -259,6 +356,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
         m.lastSeen[k] = candidates[best]->centroid;
+        detectedBy[k] = candidates[best];
         updated[k] = taken[best] = true;
       }
     }
@@ -280,9 +378,12 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       if (best < candidates.size()) {
         m.hands[k].emplace(candidates[best]->centroid, t, o.hands);
         m.lastSeen[k] = candidates[best]->centroid;
+        detectedBy[k] = candidates[best];
         taken[best] = true;
       }
     }
+    for (int k = 0; k < 2; ++k)
+      rememberLook(k, detectedBy[k], frame, fw, t);
   }
 
   TrackingState s;
@@ -296,6 +397,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
   body.godfather = state == ElectionState::Godfather && m.head.has_value();
   const int faceWindow = std::max(3, static_cast<int>(0.5f * m.faceWidth));
   s.head = partOf(m.head, t, frame, o.rig, faceWindow);
+  if (std::isfinite(s.head.rig.z) && s.head.rig.z > 0) m.headDepthM = s.head.rig.z;
   s.leftHand = partOf(m.hands[0], t, frame, o.rig, std::max(3, faceWindow / 2));
   s.rightHand = partOf(m.hands[1], t, frame, o.rig, std::max(3, faceWindow / 2));
   if (body.godfather) {

@@ -242,7 +242,9 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
   TrackerOptions tracker = o.tracker;
   tracker.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
   tracker.framesPerSecond = sceneOptions.framesPerSecond;
+  tracker.maxDisparityPx = o.stereo.minDisparity + o.stereo.numDisparities - 1;
   tracker.captureTime = false;
+  if (closedLoop && o.followHeadTurns) tracker.capturePose = syntheticCapturePose();
   pipeline.add(makeTrackingStage(tracker));
   if (closedLoop) pipeline.add(makeSyntheticHeadControlStage(o.head, *closedLoop));
   for (auto& stage : extraStages)

@@ -25,8 +25,10 @@
 #include <optional>
 
 #include "horopter/capture.hpp"
+#include "horopter/geometry.hpp"
 #include "horopter/hardware/head.hpp"
 #include "horopter/pipeline.hpp"
+#include "horopter/tracking.hpp"
 
 namespace horopter {
 
@@ -63,6 +65,13 @@ struct HeadControlOptions {
 
 // Absolute pan and tilt that centre `rigPoint` (rig frame of a head at `pose`).
 hw::HeadAngles anglesToCentre(const cv::Point3f& rigPoint, const hw::HeadAngles& pose);
+// Where a still point seen at `pixel` of the rectified left image, `depthM`
+// ahead of the rig, appears once the head has turned from pose `from` to
+// pose `to` (both about the rig's origin, midway between the cameras). The
+// pixel is returned unchanged when the point would lie behind the camera or
+// the geometry is missing (focalPx or depth not positive).
+cv::Point2f pixelAfterHeadTurn(cv::Point2f pixel, double depthM, const hw::HeadAngles& from,
+                               const hw::HeadAngles& to, const RectifiedGeometry& rig);
 // The paper's formula: the angle to add to the pose for an offset `offsetPx`
 // (pixels from the principal point) at distance `distanceM`.
 double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda);
@@ -129,9 +138,8 @@ class ClosedLoopSyntheticSource : public FrameSource {
 
 // Where commands go: (frame they were computed from, command or none).
 using HeadCommandSink = std::function<void(std::int64_t, const std::optional<hw::HeadAngles>&)>;
-// The pose the frame was captured with (synthetic: its truth; a real head:
-// its measurement at capture).
-using CapturePose = std::function<std::optional<hw::HeadAngles>(const Frame&)>;
+// The pose a synthetic frame was rendered with (from its truth).
+CapturePose syntheticCapturePose();
 
 // Needs Frame::tracking; commands only for an elected godfather whose head
 // was observed this frame; posts every frame (std::nullopt when none) and

@@ -29,6 +29,9 @@ class ConstantVelocityTrack {
   // Scales the velocity (a track without detections slows down instead of
   // flying off along its last velocity).
   void dampVelocity(double factor);
+  // Moves the position by `delta` (the image moved under the track: the
+  // camera turned); velocity and covariance are kept.
+  void shift(cv::Point2f delta);
 
   cv::Point2f position() const { return {static_cast<float>(x_(0)), static_cast<float>(x_(1))}; }
   cv::Point2f velocity() const { return {static_cast<float>(x_(2)), static_cast<float>(x_(3))}; }

@@ -4,6 +4,7 @@
 // with movement analysis, horopter/body.hpp).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -15,6 +16,10 @@
 #include "horopter/pipeline.hpp"
 
 namespace horopter {
+
+// The pose the frame was captured with (synthetic: its truth; a real head:
+// its measurement at capture); std::nullopt where unknown.
+using CapturePose = std::function<std::optional<hw::HeadAngles>(const Frame&)>;
 
 struct TrackerOptions {
   ElectionOptions election;
@@ -64,6 +69,25 @@ struct TrackerOptions {
   // round skin blob (at least 0.3 squared face widths, radius 0.2) within
   // this many face widths of its prediction (0: it coasts).
   double headBlobFaceWidths = 0.5;
+  // Where stereo is blind, no zone and so no candidate can hold a hand,
+  // though the left image shows it: left of x = d + blindBandFaces face
+  // widths (d: the hand's last disparity; the right camera does not see
+  // there), or with d above blindNearFraction of maxDisparityPx (the hand
+  // is leaving the search range towards the cameras), where under
+  // blindValidFraction of the disparities within a third of a face width of
+  // the prediction are valid. A hand track missed there follows the hand's last detected look (a
+  // grey patch blindPatchFaces face widths across) within blindSearchFaces face widths of its
+  // prediction or where it was last seen, where it correlates by at least blindMinScore, for at
+  // most blindFollowS after the last detection (0: off).
+  double blindFollowS = 1.0;
+  double blindBandFaces = 0.5;
+  double blindNearFraction = 0.85;
+  double blindValidFraction = 0.5;
+  double blindPatchFaces = 0.3;
+  double blindSearchFaces = 0.5;
+  double blindMinScore = 0.7;
+  // The front end's largest disparity, px (0: unknown, no near blindness).
+  double maxDisparityPx = 0;
   // A hand's track takes no candidate further than this many face widths
   // across the head's vertical to the other hand's side (a circle or a
   // wave crosses the midline by about half a face width).
@@ -75,6 +99,10 @@ struct TrackerOptions {
   // The rectified rig, for 3-D positions from Frame::disparity (focalPx 0:
   // no 3-D, rig coordinates stay NaN).
   RectifiedGeometry rig;
+  // The head's pose at capture. Where given (with the rig), the tracks move
+  // with the image when the head turns between frames, so a turn is not
+  // mistaken for the parts' own motion; empty: tracks stay where they were.
+  CapturePose capturePose;
 };
 
 struct TrackingState {
@@ -103,6 +131,12 @@ class BodyTracker {
   const TrackerOptions& options() const { return options_; }
 
  private:
+  // Moves the tracks with the image when the head turned since the last frame.
+  void followHeadTurn(const Frame& frame);
+  // Hand k, missed where stereo is blind, follows its look (true: found).
+  bool followBlind(int k, const Frame& frame, cv::Point2f head, double fw, double t);
+  // Keeps the look of hand k detected as `detected` this frame (or none).
+  void rememberLook(int k, const HandDetection* detected, const Frame& frame, double fw, double t);
   struct Impl;
   TrackerOptions options_;
   std::unique_ptr<Impl> impl_;

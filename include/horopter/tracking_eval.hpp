@@ -47,7 +47,10 @@ struct TrialOptions {
     return p;
   }();
   MedianParams median;
-  bool headControl = true;   // closed loop; false: the head stays where it starts
+  bool headControl = true;  // closed loop; false: the head stays where it starts
+  // The tracks move with the image when the head turns (the tracker is given
+  // each frame's head pose; TrackerOptions::capturePose).
+  bool followHeadTurns = true;
   DetectorOptions detector;  // its scope is set by the run
   TrackerOptions tracker;    // its rig and rate come from the scene
   HeadControlOptions head;

@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <iterator>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "horopter/error.hpp"
+#include "horopter/head_control.hpp"
 #include "horopter/tracking.hpp"
 
 namespace horopter {
@@ -195,6 +198,108 @@ TEST(HandTracking, ACoastingTrackMovesToTheCandidateOnItsSide) {
   }
 }
 
+// The left image and disparity map for the blind-following tests: a random
+// background, a textured hand at `hand`, and a disparity of `handDisparity`
+// px from x = 100 on (to its left, as on the left of a real pair: none).
+void paintViews(Frame& frame, cv::Point2f hand, int handDisparity) {
+  cv::Mat grey(480, 640, CV_8UC1);
+  cv::RNG background(11);
+  background.fill(grey, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat look(25, 25, CV_8UC1);
+  cv::RNG texture(5);
+  texture.fill(look, cv::RNG::UNIFORM, 60, 200);
+  look.copyTo(grey(cv::Rect(cvRound(hand.x) - 12, cvRound(hand.y) - 12, 25, 25)));
+  frame.leftGrey = grey;
+  frame.disparity = cv::Mat(480, 640, CV_16SC1, cv::Scalar(-16));
+  frame.disparity.colRange(100, 640).setTo(handDisparity * 16);
+}
+
+// A hand that moves left of what the right camera sees (no disparity, so no
+// candidate) is followed by its look; with blind following off it coasts.
+TEST(HandTracking, AHandWhereStereoIsBlindIsFollowedByItsLook) {
+  const float xs[] = {150, 150, 150, 130, 110, 95, 80, 70, 70};
+  const int firstBlind = 5;
+  for (const bool blind : {true, false}) {
+    SCOPED_TRACE(blind ? "blind following on" : "blind following off");
+    TrackerOptions o = immediateElection();
+    o.rig = RectifiedGeometry{500, 320, 0.12, 240};
+    o.maxDisparityPx = 95;
+    o.blindFollowS = blind ? 1.0 : 0.0;
+    BodyTracker tracker(o);
+    BodySample body;
+    for (int i = 0; i < static_cast<int>(std::size(xs)); ++i) {
+      const cv::Point2f hand(xs[i], 300);
+      std::vector<HandDetection> candidates = {::horopter::hand(kLeftRest)};
+      if (i < firstBlind) candidates.push_back(::horopter::hand(hand));
+      Frame frame = frameWith(i, candidates);
+      paintViews(frame, hand, 70);
+      tracker.update(frame, body);
+      ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
+      if (i < firstBlind) continue;
+      EXPECT_EQ(body.rightHand.observed, blind) << "frame " << i;
+      if (blind) {
+        EXPECT_TRUE(near(body.rightHand.image, hand))
+            << "frame " << i << " at " << body.rightHand.image;
+      }
+    }
+  }
+}
+
+// Blind following needs the front end to have found no depth there: a hand
+// missed where the disparity is valid coasts, whatever its last disparity.
+TEST(HandTracking, AHandMissedWhereStereoSeesIsNotFollowedByItsLook) {
+  TrackerOptions o = immediateElection();
+  o.rig = RectifiedGeometry{500, 320, 0.12, 240};
+  o.maxDisparityPx = 95;
+  BodyTracker tracker(o);
+  BodySample body;
+  const cv::Point2f hand(200, 300);
+  for (int i = 0; i < 4; ++i) {
+    std::vector<HandDetection> candidates = {::horopter::hand(kLeftRest)};
+    if (i < 2) candidates.push_back(::horopter::hand(hand));
+    Frame frame = frameWith(i, candidates);
+    paintViews(frame, hand, 90);  // near the range's end, but measured
+    tracker.update(frame, body);
+    ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
+    EXPECT_EQ(body.rightHand.observed, i < 2) << "frame " << i;
+  }
+}
+
+// With the head's pose at capture, the tracks move with the image when the
+// head turns: the hands' candidates, moved by the turn, stay theirs.
+TEST(HandTracking, TracksMoveWithTheImageWhenTheHeadTurns) {
+  const RectifiedGeometry rig{500, 320, 0.12, 240};
+  const hw::HeadAngles ahead{0, 0, 0.06}, turned{0.3, 0, 0.06};
+  const auto moved = [&](cv::Point2f p) { return pixelAfterHeadTurn(p, 1.5, ahead, turned, rig); };
+  ASSERT_GT(cv::norm(moved(kRightRest) - kRightRest), 2.0 * kFace) << "beyond a hand's step";
+  for (const bool follow : {true, false}) {
+    SCOPED_TRACE(follow ? "with the capture pose" : "without it");
+    TrackerOptions o = immediateElection();
+    o.rig = rig;
+    if (follow)
+      o.capturePose = [&](const Frame& f) -> std::optional<hw::HeadAngles> {
+        return f.index < 3 ? ahead : turned;
+      };
+    BodyTracker tracker(o);
+    BodySample body;
+    for (int i = 0; i < 5; ++i) {
+      const bool turnedNow = i >= 3;
+      const auto at = [&](cv::Point2f p) { return turnedNow ? moved(p) : p; };
+      // Not solid (a track on none would move to a solid one at once).
+      Frame frame =
+          frameWith(i, {::horopter::hand(at(kLeftRest), 8), ::horopter::hand(at(kRightRest), 8)});
+      auto detections = std::make_shared<Detections>(*frame.detections);
+      detections->faces[0].centre = at(kHead);
+      frame.detections = detections;
+      tracker.update(frame, body);
+      ASSERT_TRUE(body.godfather) << "frame " << i;
+      EXPECT_EQ(body.rightHand.observed && near(body.rightHand.image, at(kRightRest)),
+                follow || !turnedNow)
+          << "frame " << i << " at " << body.rightHand.image;
+    }
+  }
+}
+
 TEST(HandTracking, BadOptionsAreErrors) {
   // Each entry spoils one option of the defaults.
   const std::vector<std::function<void(TrackerOptions&)>> spoilers = {
@@ -203,6 +308,11 @@ TEST(HandTracking, BadOptionsAreErrors) {
       [](TrackerOptions& o) { o.minStereoAgreement = 1.5; },
       [](TrackerOptions& o) { o.headBlobFaceWidths = -1; },
       [](TrackerOptions& o) { o.coastJumpS = -0.1; },
+      [](TrackerOptions& o) { o.blindFollowS = -1; },
+      [](TrackerOptions& o) { o.blindValidFraction = 1.5; },
+      [](TrackerOptions& o) { o.blindPatchFaces = 0; },
+      [](TrackerOptions& o) { o.blindMinScore = 2; },
+      [](TrackerOptions& o) { o.maxDisparityPx = -1; },
   };
   for (std::size_t i = 0; i < spoilers.size(); ++i) {
     TrackerOptions o;

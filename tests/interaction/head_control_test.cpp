@@ -52,6 +52,44 @@ TEST(HeadAngles, Atan2IsAbsoluteWhateverThePose) {
   EXPECT_NEAR(a.tilt, 0, 1e-6);
 }
 
+// A still point moves in the image as the head turns: the other way, by the
+// turn's angle; and turning back puts it back.
+TEST(HeadAngles, PixelAfterHeadTurnFollowsTheRotation) {
+  const RectifiedGeometry rig{500, 320, 0.12, 240};
+  const hw::HeadAngles ahead{0, 0, 0.06}, right{0.2, 0, 0.06}, down{0, 0.1, 0.06};
+  const cv::Point2f centre(320, 240);
+  // Unchanged pose: unchanged pixel.
+  cv::Point2f p = pixelAfterHeadTurn(centre, 1.5, ahead, ahead, rig);
+  EXPECT_NEAR(p.x, 320, 1e-3);
+  EXPECT_NEAR(p.y, 240, 1e-3);
+  // Far away, the turn about the rig's origin is a turn about the camera:
+  // looking right by 0.2 rad moves the point f tan(0.2) to the left.
+  p = pixelAfterHeadTurn(centre, 1e6, ahead, right, rig);
+  EXPECT_NEAR(p.x, 320 - 500 * std::tan(0.2), 0.05);
+  EXPECT_NEAR(p.y, 240, 1e-3);
+  // Looking down moves it up.
+  p = pixelAfterHeadTurn(centre, 1e6, ahead, down, rig);
+  EXPECT_NEAR(p.x, 320, 1e-3);
+  EXPECT_NEAR(p.y, 240 - 500 * std::tan(0.1), 0.05);
+  // Near, the left camera's offset from the turning axis adds a little
+  // parallax (about half a pixel at 1 m for this turn).
+  const cv::Point2f nearPoint = pixelAfterHeadTurn(centre, 1.0, ahead, right, rig);
+  EXPECT_GT(std::abs(nearPoint.x - (320 - 500 * std::tan(0.2))), 0.3);
+  EXPECT_LT(std::abs(nearPoint.x - (320 - 500 * std::tan(0.2))), 1.5);
+  // Far away, there and back again.
+  const hw::HeadAngles turned{-0.3, 0.15, 0.06};
+  const cv::Point2f there = pixelAfterHeadTurn({100, 400}, 1e6, ahead, turned, rig);
+  const cv::Point2f back = pixelAfterHeadTurn(there, 1e6, turned, ahead, rig);
+  EXPECT_GT(cv::norm(there - cv::Point2f(100, 400)), 100);
+  EXPECT_NEAR(back.x, 100, 1e-2);
+  EXPECT_NEAR(back.y, 400, 1e-2);
+  // No geometry or depth: the pixel stays.
+  p = pixelAfterHeadTurn({100, 400}, 0, ahead, right, rig);
+  EXPECT_EQ(p, cv::Point2f(100, 400));
+  p = pixelAfterHeadTurn({100, 400}, 1.5, ahead, right, RectifiedGeometry{});
+  EXPECT_EQ(p, cv::Point2f(100, 400));
+}
+
 TEST(HeadAngles, PaperFormula) {
   // phi = d * lambda = 1: the pinhole angle of the pixel.
   EXPECT_NEAR(paperAngle(100, 500, 2.0, 0.5), std::atan(100.0 / 500.0), 1e-12);
