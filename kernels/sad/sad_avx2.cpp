@@ -48,11 +48,11 @@
 //      uniqueness limit (32-bit, the /100 as a multiplication in double,
 //      exact); the count of lanes with cost <= limit, which for a valid
 //      pixel is the winner plus those of its neighbours within the limit.
-//      The neighbours' costs C(b - 1), C(b + 1) are read by scalar loads
-//      (rows -1 and D hold "no cost"), then texture (window sums of
-//      16-bit column sums), uniqueness, sub-pixel (truncated division in
-//      double, exact for these magnitudes) and rounding go 8 pixels per
-//      vector.
+//      Then, from the registers, 16 pixels at a time: the neighbours' costs
+//      C(b - 1), C(b + 1) by gathers (rows -1 and D hold "no cost"), texture
+//      (window sums of 16-bit column sums), uniqueness in 16-bit lanes, and
+//      sub-pixel (truncated division in float, exact for these magnitudes)
+//      and rounding in two halves of 8 pixels.
 //   3. Right winners, 16 right pixels per vector: right pixel xr meets lane k
 //      at pixel xr + minD + k - x0, so lane k's costs for 16 consecutive xr
 //      are 16 consecutive entries of its row (unaligned load; edges of "no
@@ -226,27 +226,40 @@ template <int kShift, int kBlocks>
       m = _mm256_min_epi16(m, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + j * step)));
     return m;
   };
-  for (int n = 0; n < kBlocks; ++n) {
-    best[n] = groupMin(c + n * kLanes);
-    index[n] = load(indexOf);
-  }
   const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~(kGroup - 1)));
+  const auto merge = [&](__m256i& bestN, __m256i& indexN, __m256i now, __m256i indexK) {
+    __m256i better;
+    if constexpr (kGroup == 1) {
+      better = _mm256_cmpgt_epi16(bestN, now);
+      bestN = _mm256_min_epi16(bestN, now);
+    } else {
+      better = _mm256_cmpgt_epi16(_mm256_and_si256(bestN, high), now);
+      bestN = _mm256_blendv_epi8(bestN, now, better);
+    }
+    indexN = _mm256_blendv_epi8(indexN, indexK, better);
+  };
+  // Named accumulators, not arrays: with arrays GCC copies every one at
+  // every step.
+  static_assert(kBlocks == 4);
+  __m256i best0 = groupMin(c), best1 = groupMin(c + kLanes), best2 = groupMin(c + 2 * kLanes),
+          best3 = groupMin(c + 3 * kLanes);
+  __m256i index0 = load(indexOf), index1 = index0, index2 = index0, index3 = index0;
   for (int k0 = kGroup; k0 < count; k0 += kGroup) {
     c += kGroup * step;
     const __m256i indexK = load(indexOf + k0 * kLanes);
-    for (int n = 0; n < kBlocks; ++n) {
-      const __m256i now = groupMin(c + n * kLanes);
-      __m256i better;
-      if constexpr (kGroup == 1) {
-        better = _mm256_cmpgt_epi16(best[n], now);
-        best[n] = _mm256_min_epi16(best[n], now);
-      } else {
-        better = _mm256_cmpgt_epi16(_mm256_and_si256(best[n], high), now);
-        best[n] = _mm256_blendv_epi8(best[n], now, better);
-      }
-      index[n] = _mm256_blendv_epi8(index[n], indexK, better);
-    }
+    merge(best0, index0, groupMin(c), indexK);
+    merge(best1, index1, groupMin(c + kLanes), indexK);
+    merge(best2, index2, groupMin(c + 2 * kLanes), indexK);
+    merge(best3, index3, groupMin(c + 3 * kLanes), indexK);
   }
+  best[0] = best0;
+  best[1] = best1;
+  best[2] = best2;
+  best[3] = best3;
+  index[0] = index0;
+  index[1] = index1;
+  index[2] = index2;
+  index[3] = index3;
 }
 
 class Matcher {
@@ -295,11 +308,7 @@ class Matcher {
         costs_(static_cast<std::size_t>(count_ + 2) * rowLen_),
         laneOf_(static_cast<std::size_t>(count_) * kLanes),
         disparityOf_(static_cast<std::size_t>(count_) * kLanes),
-        pxTexture_(padded_),
-        pxMin_(padded_),
-        pxBest_(padded_),
-        pxLimit_(padded_),
-        pxAbove_(padded_) {
+        pxTexture_(padded_) {
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -646,178 +655,180 @@ class Matcher {
     s.costB = costB;
   }
 
-  // The left view's decisions of one row, 16 pixels per vector:
+  // The left view's decisions of one row, 16 pixels per vector, 64 pixels
+  // (4 blocks) per pass over the lanes:
   //   winner: the least key over the lanes (leastKeys), so the first
-  //   (smallest d) wins ties; uniqueness: the pixel is valid iff every lane with cost
-  //   <= limit is the winner or next to it, i.e. iff the count of such lanes
-  //   equals 1 + [C(b - 1) <= limit] + [C(b + 1) <= limit] (rows -1 and count
-  //   hold "no cost", above any limit). The neighbours' costs are read per
-  //   pixel, then sub-pixel and rounding go 8 pixels at a time. Pixels
-  //   [from, to): from is a multiple of 64, to one or the last pixel.
+  //   (smallest d) wins ties; uniqueness: the pixel is valid iff every lane
+  //   with cost <= limit is the winner or next to it, i.e. iff the count of
+  //   such lanes equals 1 + [C(b - 1) <= limit] + [C(b + 1) <= limit] (rows
+  //   -1 and count hold "no cost", above any limit). Then finishLeft, from
+  //   the registers. Pixels [from, to): from is a multiple of 64.
   template <int kShift>
   void decideLeft(std::int16_t* outDisparity, int from, int to) const {
     const int ratio = params_.uniquenessRatio;
-    const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
     const __m256i lowBits32 = _mm256_set1_epi32((1 << kShift) - 1);
+    const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
     const std::ptrdiff_t rowLen = rowLen_;
+    const int count = count_;
     // kBlocks blocks of 16 pixels per pass over the lanes: independent
     // chains, and whole cache lines of each lane's row.
     constexpr int kBlocks = 4;
     for (int i0 = from; i0 < to; i0 += kBlocks * kLanes) {
       __m256i best[kBlocks], lane[kBlocks];
       const std::int16_t* c = costs(0) + i0;
-      leastKeys<kShift, kBlocks>(c, rowLen, count_, laneOf_.get(), best, lane);
-      __m256i limit[kBlocks];
-      for (int n = 0; n < kBlocks; ++n) {
-        const int i = i0 + n * kLanes;
-        const __m256i key =
-            _mm256_xor_si256(best[n], _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
-        const __m256i least = _mm256_srli_epi16(key, kShift);
-        const __m256i b = _mm256_add_epi16(lane[n], _mm256_and_si256(key, lowBits));
+      leastKeys<kShift, kBlocks>(c, rowLen, count, laneOf_.get(), best, lane);
+      // Per block: one above the largest key of a cost <= limit (G * limit
+      // + G, biased; packus saturates at 65535 and the biased add at 0x7FFF,
+      // above every real key), and the limit itself saturated at 65535.
+      __m256i keyLimit[kBlocks], limit[kBlocks], within[kBlocks];
+      for (int n = 0; n < kBlocks && ratio > 0; ++n) {
+        const __m256i least = _mm256_srli_epi16(_mm256_xor_si256(best[n], bias16), kShift);
         const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
         const __m256i minHi = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(least, 1));
-        store8x32(pxMin_.get() + i, minLo);
-        store8x32(pxMin_.get() + i + 8, minHi);
-        store8x32(pxBest_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(b)));
-        store8x32(pxBest_.get() + i + 8, _mm256_cvtepi16_epi32(_mm256_extracti128_si256(b, 1)));
-        if (ratio > 0) {
-          const __m256i ratioV = _mm256_set1_epi32(ratio);
-          const __m256i limitLo =
-              _mm256_add_epi32(minLo, divideBy100(_mm256_mullo_epi32(minLo, ratioV)));
-          const __m256i limitHi =
-              _mm256_add_epi32(minHi, divideBy100(_mm256_mullo_epi32(minHi, ratioV)));
-          store8x32(pxLimit_.get() + i, limitLo);
-          store8x32(pxLimit_.get() + i + 8, limitHi);
-          // The largest key of a cost <= limit, G * limit + G - 1, at most
-          // 65535 (packus saturates), biased, back in pixel order.
-          const __m256i cap = _mm256_set1_epi32(0xFFFF);
-          const __m256i keyLo = _mm256_add_epi32(
-              _mm256_slli_epi32(_mm256_min_epi32(limitLo, cap), kShift), lowBits32);
-          const __m256i keyHi = _mm256_add_epi32(
-              _mm256_slli_epi32(_mm256_min_epi32(limitHi, cap), kShift), lowBits32);
-          limit[n] =
-              _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(keyLo, keyHi), 0xD8),
-                               _mm256_set1_epi16(static_cast<std::int16_t>(kBias)));
-        }
+        const __m256i ratioV = _mm256_set1_epi32(ratio);
+        const __m256i limitLo =
+            _mm256_add_epi32(minLo, divideBy100(_mm256_mullo_epi32(minLo, ratioV)));
+        const __m256i limitHi =
+            _mm256_add_epi32(minHi, divideBy100(_mm256_mullo_epi32(minHi, ratioV)));
+        limit[n] = _mm256_permute4x64_epi64(_mm256_packus_epi32(limitLo, limitHi), 0xD8);
+        const __m256i cap = _mm256_set1_epi32(0xFFFF);
+        const __m256i keyLo =
+            _mm256_add_epi32(_mm256_slli_epi32(_mm256_min_epi32(limitLo, cap), kShift), lowBits32);
+        const __m256i keyHi =
+            _mm256_add_epi32(_mm256_slli_epi32(_mm256_min_epi32(limitHi, cap), kShift), lowBits32);
+        keyLimit[n] = _mm256_adds_epi16(
+            _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(keyLo, keyHi), 0xD8),
+                             bias16),
+            _mm256_set1_epi16(1));
+        within[n] = _mm256_setzero_si256();
       }
       if (ratio > 0) {
-        __m256i above[kBlocks];
-        for (int n = 0; n < kBlocks; ++n)
-          above[n] = _mm256_setzero_si256();
+        // Minus the count of lanes with key < keyLimit[n], i.e. cost <= limit
+        // (an add of each -1 mask), in named accumulators: with an array GCC
+        // copies every one at every step.
+        static_assert(kBlocks == 4);
         c = costs(0) + i0;
-        for (int k = 0; k < count_; ++k, c += rowLen) {
-          for (int n = 0; n < kBlocks; ++n)
-            above[n] =
-                _mm256_sub_epi16(above[n], _mm256_cmpgt_epi16(load(c + n * kLanes), limit[n]));
+        __m256i w0 = within[0], w1 = within[1], w2 = within[2], w3 = within[3];
+        for (int k = 0; k < count; ++k, c += rowLen) {
+          w0 = _mm256_add_epi16(w0, _mm256_cmpgt_epi16(keyLimit[0], load(c)));
+          w1 = _mm256_add_epi16(w1, _mm256_cmpgt_epi16(keyLimit[1], load(c + kLanes)));
+          w2 = _mm256_add_epi16(w2, _mm256_cmpgt_epi16(keyLimit[2], load(c + 2 * kLanes)));
+          w3 = _mm256_add_epi16(w3, _mm256_cmpgt_epi16(keyLimit[3], load(c + 3 * kLanes)));
         }
-        for (int n = 0; n < kBlocks; ++n) {
-          const int i = i0 + n * kLanes;
-          store8x32(pxAbove_.get() + i, _mm256_cvtepi16_epi32(_mm256_castsi256_si128(above[n])));
-          store8x32(pxAbove_.get() + i + 8,
-                    _mm256_cvtepi16_epi32(_mm256_extracti128_si256(above[n], 1)));
-        }
+        within[0] = w0;
+        within[1] = w1;
+        within[2] = w2;
+        within[3] = w3;
+      }
+      for (int n = 0; n < kBlocks; ++n) {
+        const int i = i0 + n * kLanes;
+        if (i >= to) break;
+        finishLeft<kShift>(
+            best[n], lane[n], ratio > 0 ? limit[n] : best[n],
+            ratio > 0 ? _mm256_sub_epi16(_mm256_setzero_si256(), within[n]) : best[n], i,
+            std::min(kLanes, to - i), outDisparity + x0_);
       }
     }
-    const std::int16_t invalid = invalidDisparity(params_);
-    // C(b - 1) and C(b + 1) by gathers of 32 bits at 16-bit entries (the
-    // entry after each is inside the row's edge), low halves kept; rows -1
-    // and count hold "no cost".
-    const std::int16_t* base = costs(0);
+  }
+
+  // The last steps of decideLeft for the 16 pixels from i, of which the
+  // first `valid` are written to out[i ..]: C(b - 1) and C(b + 1) by gathers
+  // of 32 bits at 16-bit entries (the entry after each is inside the row's
+  // edge; rows -1 and count hold "no cost"), then texture, uniqueness
+  // (limit: saturated at 65535; within: lanes with cost <= limit) and the
+  // sub-pixel step.
+  template <int kShift>
+  void finishLeft(__m256i bestKey, __m256i lane, __m256i limit, __m256i within, int i, int valid,
+                  std::int16_t* out) const {
+    const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+    const __m256i ones = _mm256_set1_epi16(-1);
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i key = _mm256_xor_si256(bestKey, bias16);
+    const __m256i least = _mm256_srli_epi16(key, kShift);
+    const __m256i b =
+        _mm256_add_epi16(lane, _mm256_and_si256(key, _mm256_set1_epi16((1 << kShift) - 1)));
+
     const __m256i rowLenV = _mm256_set1_epi32(rowLen_);
     const __m256i step8 = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i offLo = _mm256_add_epi32(
+        _mm256_mullo_epi32(_mm256_cvtepu16_epi32(_mm256_castsi256_si128(b)), rowLenV),
+        _mm256_add_epi32(_mm256_set1_epi32(i), step8));
+    const __m256i offHi = _mm256_add_epi32(
+        _mm256_mullo_epi32(_mm256_cvtepu16_epi32(_mm256_extracti128_si256(b, 1)), rowLenV),
+        _mm256_add_epi32(_mm256_set1_epi32(i + 8), step8));
     const __m256i low16 = _mm256_set1_epi32(0xFFFF);
-    const auto costsOfKeys = [&](__m256i gathered) {
-      const __m256i key =
-          _mm256_xor_si256(_mm256_and_si256(gathered, low16), _mm256_set1_epi32(kBias));
-      return _mm256_or_si256(_mm256_srli_epi32(key, kShift),
-                             _mm256_and_si256(_mm256_cmpeq_epi32(key, low16), low16));
+    // The cost of the entries at row `row` (relative to row 0) and the
+    // offsets; "no cost" stays 65535.
+    const auto neighbourCosts = [&](const std::int16_t* row) {
+      const auto* p = reinterpret_cast<const int*>(row);
+      const __m256i lo = _mm256_and_si256(_mm256_i32gather_epi32(p, offLo, 2), low16);
+      const __m256i hi = _mm256_and_si256(_mm256_i32gather_epi32(p, offHi, 2), low16);
+      const __m256i keys =
+          _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(lo, hi), 0xD8), bias16);
+      return _mm256_or_si256(_mm256_srli_epi16(keys, kShift), _mm256_cmpeq_epi16(keys, ones));
     };
-    int i = from;
-    for (; i + 8 <= to; i += 8) {
-      const __m256i c0 = load8x32(pxMin_.get() + i), b = load8x32(pxBest_.get() + i);
-      const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(b, rowLenV),
-                                              _mm256_add_epi32(_mm256_set1_epi32(i), step8));
-      const __m256i below = costsOfKeys(
-          _mm256_i32gather_epi32(reinterpret_cast<const int*>(base - rowLen_), offset, 2));
-      const __m256i above = costsOfKeys(
-          _mm256_i32gather_epi32(reinterpret_cast<const int*>(base + rowLen_), offset, 2));
-      __m256i bad = _mm256_setzero_si256();
-      if (useTexture_) {
-        bad = _mm256_cmpgt_epi32(_mm256_set1_epi32(params_.textureThreshold),
-                                 load8x32(pxTexture_.get() + i));
-      }
-      if (ratio > 0) {
-        const __m256i limit = load8x32(pxLimit_.get() + i);
-        const __m256i one = _mm256_set1_epi32(1);
-        // 1 + [below <= limit] + [above <= limit], as count - #above.
-        const __m256i expected = _mm256_sub_epi32(
-            _mm256_add_epi32(_mm256_add_epi32(one, one), one),
-            _mm256_add_epi32(_mm256_and_si256(_mm256_cmpgt_epi32(below, limit), one),
-                             _mm256_and_si256(_mm256_cmpgt_epi32(above, limit), one)));
-        const __m256i within =
-            _mm256_sub_epi32(_mm256_set1_epi32(count_), load8x32(pxAbove_.get() + i));
-        bad = _mm256_or_si256(
-            bad, _mm256_xor_si256(_mm256_cmpeq_epi32(within, expected), _mm256_set1_epi32(-1)));
-        bad = _mm256_or_si256(bad, _mm256_cmpgt_epi32(limit, _mm256_set1_epi32(0xFFFE)));
-      }
-      // At the ends of the range the missing side mirrors the other.
-      const __m256i cm =
-          _mm256_blendv_epi8(below, above, _mm256_cmpeq_epi32(b, _mm256_setzero_si256()));
-      const __m256i cp =
-          _mm256_blendv_epi8(above, below, _mm256_cmpeq_epi32(b, _mm256_set1_epi32(count_ - 1)));
-      const __m256i diff = _mm256_sub_epi32(cm, cp);
-      const __m256i den =
-          _mm256_add_epi32(_mm256_sub_epi32(_mm256_add_epi32(cm, cp), _mm256_add_epi32(c0, c0)),
-                           _mm256_abs_epi32(diff));
-      const __m256i num = _mm256_slli_epi32(diff, 8);
-      // Truncated quotient in double: |num| < 2^24, den < 2^18, so the
-      // rounding error (< 2^-46) cannot cross an integer.
-      const __m256i safeDen = _mm256_max_epi32(den, _mm256_set1_epi32(1));
-      const __m128i qLo =
-          _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(num)),
-                                            _mm256_cvtepi32_pd(_mm256_castsi256_si128(safeDen))));
-      const __m128i qHi = _mm256_cvttpd_epi32(
-          _mm256_div_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(num, 1)),
-                        _mm256_cvtepi32_pd(_mm256_extracti128_si256(safeDen, 1))));
-      const __m256i off = _mm256_and_si256(_mm256_set_m128i(qHi, qLo),
-                                           _mm256_cmpgt_epi32(den, _mm256_setzero_si256()));
-      const __m256i d = _mm256_add_epi32(b, _mm256_set1_epi32(minD_));
-      __m256i out = _mm256_srai_epi32(
+    const __m256i below = neighbourCosts(costs(-1));
+    const __m256i above = neighbourCosts(costs(1));
+
+    __m256i bad = zero;
+    if (useTexture_) {
+      const __m256i threshold = _mm256_set1_epi32(params_.textureThreshold);
+      const int* texture = pxTexture_.get() + i;
+      bad = _mm256_permute4x64_epi64(
+          _mm256_packs_epi32(_mm256_cmpgt_epi32(threshold, load8x32(texture)),
+                             _mm256_cmpgt_epi32(threshold, load8x32(texture + 8))),
+          0xD8);
+    }
+    if (params_.uniquenessRatio > 0) {
+      // x <= limit, unsigned.
+      const auto atMost = [&](__m256i x) {
+        return _mm256_cmpeq_epi16(_mm256_max_epu16(x, limit), limit);
+      };
+      // 1 + [below <= limit] + [above <= limit]; a limit of 65535 or more
+      // takes in every lane.
+      const __m256i expected =
+          _mm256_sub_epi16(_mm256_sub_epi16(_mm256_set1_epi16(1), atMost(below)), atMost(above));
+      bad = _mm256_or_si256(bad, _mm256_xor_si256(_mm256_cmpeq_epi16(within, expected), ones));
+      bad = _mm256_or_si256(bad, _mm256_cmpeq_epi16(limit, ones));
+    }
+
+    // At the ends of the range the missing side mirrors the other. With
+    // c0 the least cost, den = cm + cp - 2 c0 + |cm - cp| = 2 (max - c0), so
+    // off = (cm - cp) * 256 / den = 128 (cm - cp) / (max - c0), truncated.
+    const __m256i cm = _mm256_blendv_epi8(below, above, _mm256_cmpeq_epi16(b, zero));
+    const __m256i cp =
+        _mm256_blendv_epi8(above, below, _mm256_cmpeq_epi16(b, _mm256_set1_epi16(count_ - 1)));
+    const __m256i spread = _mm256_sub_epi16(_mm256_max_epu16(cm, cp), least);  // >= 0
+    // One half of 8 pixels in 32 bits. The quotient in float is exact:
+    // |128 (cm - cp)| < 2^23 and 0 < spread < 2^16, so the rounded quotient
+    // (<= 128, error under 2^-18) cannot cross an integer (at least 1/spread
+    // away unless it is one).
+    const auto half = [&](__m128i cm8, __m128i cp8, __m128i spread8, __m128i b8) {
+      const __m256i s = _mm256_cvtepu16_epi32(spread8);
+      const __m256i num = _mm256_slli_epi32(
+          _mm256_sub_epi32(_mm256_cvtepu16_epi32(cm8), _mm256_cvtepu16_epi32(cp8)), 7);
+      const __m256i quotient = _mm256_cvttps_epi32(_mm256_div_ps(
+          _mm256_cvtepi32_ps(num), _mm256_cvtepi32_ps(_mm256_max_epi32(s, _mm256_set1_epi32(1)))));
+      const __m256i off = _mm256_and_si256(quotient, _mm256_cmpgt_epi32(s, _mm256_setzero_si256()));
+      const __m256i d = _mm256_add_epi32(_mm256_cvtepu16_epi32(b8), _mm256_set1_epi32(minD_));
+      return _mm256_srai_epi32(
           _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(d, 8), off), _mm256_set1_epi32(8)),
           4);
-      out = _mm256_blendv_epi8(out, _mm256_set1_epi32(invalid), bad);
-      const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi32(out, out), 0x08);
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(outDisparity + x0_ + i),
-                       _mm256_castsi256_si128(packed));
+    };
+    const __m256i lo = half(_mm256_castsi256_si128(cm), _mm256_castsi256_si128(cp),
+                            _mm256_castsi256_si128(spread), _mm256_castsi256_si128(b));
+    const __m256i hi = half(_mm256_extracti128_si256(cm, 1), _mm256_extracti128_si256(cp, 1),
+                            _mm256_extracti128_si256(spread, 1), _mm256_extracti128_si256(b, 1));
+    const __m256i result =
+        _mm256_blendv_epi8(_mm256_permute4x64_epi64(_mm256_packs_epi32(lo, hi), 0xD8),
+                           _mm256_set1_epi16(invalidDisparity(params_)), bad);
+    if (valid == kLanes) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), result);
+    } else {
+      alignas(32) std::int16_t lanes[kLanes];
+      store(lanes, result);
+      std::copy_n(lanes, valid, out + i);
     }
-    for (; i < to; ++i)
-      outDisparity[x0_ + i] = decideOne(i, kShift);
-  }
-
-  // The cost of a stored key; "no cost" stays 65535.
-  static int costOfKey(std::int16_t stored, int shift) {
-    const int key = static_cast<std::uint16_t>(stored ^ kBias);
-    return key == 0xFFFF ? key : key >> shift;
-  }
-
-  // decideLeft's last step for one pixel, in scalar.
-  std::int16_t decideOne(int i, int shift) const {
-    const int c0 = pxMin_.get()[i], b = pxBest_.get()[i];
-    const std::int16_t* entry = costs(b) + i;
-    const int below = costOfKey(entry[-rowLen_], shift), above = costOfKey(entry[rowLen_], shift);
-    if (useTexture_ && pxTexture_.get()[i] < params_.textureThreshold)
-      return invalidDisparity(params_);
-    if (params_.uniquenessRatio > 0) {
-      const int limit = pxLimit_.get()[i];
-      const int expected = 1 + (below <= limit) + (above <= limit);
-      if (limit >= 0xFFFF || count_ - pxAbove_.get()[i] != expected)
-        return invalidDisparity(params_);
-    }
-    const int cm = b == 0 ? above : below;
-    const int cp = b == count_ - 1 ? below : above;
-    const int den = cm + cp - 2 * c0 + std::abs(cm - cp);
-    const int off = den > 0 ? (cm - cp) * 256 / den : 0;
-    return static_cast<std::int16_t>(((minD_ + b) * 256 + off + 8) >> 4);
   }
 
   // The right view's winners of one row, 16 right pixels per vector: right
@@ -867,9 +878,7 @@ class Matcher {
   AlignedArray<std::int16_t> costs_;                     // [k + 1][edge + i + edge], biased
   AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
   AlignedArray<std::int16_t> disparityOf_;               // [k][16] = minD + k
-  // Per pixel i = x - x0: texture window sum, least cost, winner lane,
-  // uniqueness limit and lanes above it.
-  AlignedArray<int> pxTexture_, pxMin_, pxBest_, pxLimit_, pxAbove_;
+  AlignedArray<int> pxTexture_;                          // per pixel i = x - x0: texture window sum
 };
 
 }  // namespace

@@ -313,7 +313,7 @@ std::vector<MatchCase> matchCases() {
   // Parameter sweeps on one size.
   for (int blockSize : {3, 5, 7, 9, 11, 15, 21}) {
     for (int numD : {16, 32}) {
-      for (int uniqueness : {0, 5, 15, 50}) {
+      for (int uniqueness : {0, 5, 15, 50, 1000}) {  // 1000: limits past every cost
         StereoParams p;
         p.blockSize = blockSize;
         p.numDisparities = numD;
