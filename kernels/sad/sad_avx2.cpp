@@ -680,7 +680,8 @@ class Matcher {
       // Per block: one above the largest key of a cost <= limit (G * limit
       // + G, biased; packus saturates at 65535 and the biased add at 0x7FFF,
       // above every real key), and the limit itself saturated at 65535.
-      __m256i keyLimit[kBlocks], limit[kBlocks], within[kBlocks];
+      // Unused (zero) when the uniqueness test is off.
+      __m256i keyLimit[kBlocks], limit[kBlocks] = {}, within[kBlocks] = {};
       for (int n = 0; n < kBlocks && ratio > 0; ++n) {
         const __m256i least = _mm256_srli_epi16(_mm256_xor_si256(best[n], bias16), kShift);
         const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
@@ -700,7 +701,6 @@ class Matcher {
             _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(keyLo, keyHi), 0xD8),
                              bias16),
             _mm256_set1_epi16(1));
-        within[n] = _mm256_setzero_si256();
       }
       if (ratio > 0) {
         // Minus the count of lanes with key < keyLimit[n], i.e. cost <= limit
@@ -723,10 +723,9 @@ class Matcher {
       for (int n = 0; n < kBlocks; ++n) {
         const int i = i0 + n * kLanes;
         if (i >= to) break;
-        finishLeft<kShift>(
-            best[n], lane[n], ratio > 0 ? limit[n] : best[n],
-            ratio > 0 ? _mm256_sub_epi16(_mm256_setzero_si256(), within[n]) : best[n], i,
-            std::min(kLanes, to - i), outDisparity + x0_);
+        finishLeft<kShift>(best[n], lane[n], limit[n],
+                           _mm256_sub_epi16(_mm256_setzero_si256(), within[n]), i,
+                           std::min(kLanes, to - i), outDisparity + x0_);
       }
     }
   }
