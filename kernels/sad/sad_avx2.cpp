@@ -123,9 +123,6 @@ inline __m256i absDiff8(__m256i a, __m256i b) {
 inline __m256i load8x32(const int* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
 }
-inline void store8x32(int* p, __m256i v) {
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v);
-}
 
 // min and max byte of rows [y0, y1) of a U8C1 view, folded into lo and hi.
 void scanRange(const ConstImageView& view, int y0, int y1, int& lo, int& hi) {
@@ -208,7 +205,7 @@ inline __m256i divideBy100(__m256i n) {
 }
 
 // The least key over lanes k = 0 .. count - 1 (lane k's 16 entries at
-// c + k * step), for kBlocks blocks of 16 consecutive entries, and
+// c + k * step), for kBlocks (4) blocks of 16 consecutive entries, and
 // index[k0] (a vector) of the group of G = 2^kShift lanes k0 .. k0 + G - 1
 // that holds it: within a group the least key is the least (cost, k mod G),
 // i.e. the least cost at its smallest k; across groups a later one wins only
