@@ -7,11 +7,12 @@ packages=(
   build-essential cmake pkg-config
   libopencv-dev opencv-data opencv-doc    # OpenCV, its Haar cascades, its sample data
   python3-skimage                         # scikit-image's data: textures of the synthetic scene
-  libeigen3-dev
+  libeigen3-dev nlohmann-json3-dev        # Eigen; JSON of the evaluation reports
   ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo   # OpenCL, and PoCL on the CPU
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module and its pytest suite
+  python3-distributed                     # Dask: evaluation trials spread over a cluster
 )
 
 missing=()

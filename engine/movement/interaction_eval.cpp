@@ -2,13 +2,10 @@
 #include "horopter/interaction_eval.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 #include <vector>
 
+#include "eval/parallel_trials.hpp"
 #include "horopter/body_track_file.hpp"
 #include "horopter/error.hpp"
 
@@ -23,14 +20,33 @@ double InteractionScopeResult::visionFps() const {
   return tracking.visionMs > 0 ? 1000.0 / tracking.visionMs : 0;
 }
 
-namespace {
+int InteractionScopeResult::trialsLostAll() const {
+  return static_cast<int>(
+      std::count_if(trials.begin(), trials.end(), [](const auto& t) { return t.lostAll(); }));
+}
 
-struct TrialOutcome {
-  MovementScore score;
-  TrialResult tracking;
-};
+std::string trialFailureCause(const TrialDiagnosis& d, double framesPerSecond) {
+  if (d.truthElectedFrame < 0) return "";
+  if (d.trackerElectedFrame < 0) return "never-elected";
+  if (d.releases > 0) return "released";
+  if (static_cast<double>(d.trackerElectedFrame - d.truthElectedFrame) > framesPerSecond)
+    return "elected-late";
+  static const char* const kParts[3] = {"head", "left-hand", "right-hand"};
+  std::int64_t most = 0;
+  std::string cause;
+  for (int part = 0; part < 3; ++part)
+    for (int c = 0; c < static_cast<int>(LossCause::Count); ++c)
+      if (d.causes.counts[part][c] > most) {
+        most = d.causes.counts[part][c];
+        cause = std::string(kParts[part]) + ":" + lossCauseName(static_cast<LossCause>(c));
+      }
+  return cause;
+}
 
-TrialOutcome runTrial(const InteractionEvalOptions& options, DetectionScope scope, int index) {
+InteractionTrial runInteractionTrial(const InteractionEvalOptions& options, DetectionScope scope,
+                                     int index) {
+  if (!options.model) throw Error("eval-interaction: no movement model");
+  if (index < 0) throw Error("eval-interaction: a trial index is >= 0");
   TrialOptions trial = options.trial;
   trial.seed = options.trial.seed + static_cast<std::uint64_t>(index);
   // The LMA back-projects parts without depth with the scene's camera.
@@ -46,7 +62,9 @@ TrialOutcome runTrial(const InteractionEvalOptions& options, DetectionScope scop
   std::vector<ScoredFrame> frames;
   std::vector<BodySample> bodies;
   std::vector<MovementClass> truths;
-  TrialOutcome outcome;
+  InteractionTrial outcome;
+  outcome.seed = trial.seed;
+  bool wasElected = false;
   outcome.tracking = runTrackingTrial(trial, scope, std::move(extra), [&](const TrialFrame& tf) {
     ScoredFrame s;
     s.truth = static_cast<MovementClass>(static_cast<int>(tf.truth.people.at(0).movement));
@@ -54,70 +72,61 @@ TrialOutcome runTrial(const InteractionEvalOptions& options, DetectionScope scop
     s.onTarget = tf.frame.body.godfather && !tf.lost;
     s.interacting = tf.truthGodfather;
     frames.push_back(s);
+    if (options.diagnose) {
+      TrialDiagnosis& d = outcome.diagnosis;
+      d.causes.add(tf, trial);
+      const bool elected =
+          tf.frame.tracking && tf.frame.tracking->election == ElectionState::Godfather;
+      if (tf.truthGodfather && d.truthElectedFrame < 0) d.truthElectedFrame = tf.frame.index;
+      if (elected && d.trackerElectedFrame < 0) d.trackerElectedFrame = tf.frame.index;
+      if (!elected && wasElected && tf.truthGodfather) ++d.releases;
+      wasElected = elected;
+    }
     if (!options.writeTracksDir.empty()) {
       bodies.push_back(tf.frame.body);
       truths.push_back(s.truth);
     }
   });
+  outcome.tracking.summary.trace.clear();  // a trial's outcome is kept; its trace is not needed
   if (!options.writeTracksDir.empty())
     writeBodyTrack(options.writeTracksDir + "/" +
                        (scope == DetectionScope::FullImage ? "full_" : "region_") +
                        std::to_string(trial.seed) + ".csv",
                    bodies, truths);
-  outcome.score = summariseSegments(frames, options.graceFrames);
+  outcome.movements = summariseSegments(frames, options.graceFrames);
   return outcome;
 }
-
-}  // namespace
 
 InteractionScopeResult evaluateInteraction(const InteractionEvalOptions& options,
                                            DetectionScope scope) {
   if (options.trials < 1) throw Error("eval-interaction needs at least one trial");
   if (!options.model) throw Error("eval-interaction: no movement model");
   if (options.jobs < 1 || options.jobs > 64) throw Error("eval-interaction: jobs must be 1..64");
+  std::function<void(int, const InteractionTrial&)> done;
+  if (options.progress)
+    done = [&](int i, const InteractionTrial& t) { options.progress(scope, i, t.movements); };
+  return summariseInteraction(
+      scope, eval::runTrials<InteractionTrial>(
+                 options.trials, options.jobs,
+                 [&](int i) { return runInteractionTrial(options, scope, i); }, done));
+}
 
-  // Trials are independent: `jobs` workers take the next index until none is
-  // left; the results are summed in trial order, so they do not depend on jobs.
-  std::vector<TrialOutcome> outcomes(static_cast<std::size_t>(options.trials));
-  std::atomic<int> next{0};
-  std::mutex progressMutex;
-  std::exception_ptr failure;
-  const auto work = [&] {
-    for (int i = next++; i < options.trials; i = next++) {
-      try {
-        outcomes[static_cast<std::size_t>(i)] = runTrial(options, scope, i);
-      } catch (...) {
-        const std::lock_guard lock(progressMutex);
-        if (!failure) failure = std::current_exception();
-        next = options.trials;  // the others stop after their trial
-        return;
-      }
-      if (options.progress) {
-        const std::lock_guard lock(progressMutex);
-        options.progress(scope, i, outcomes[static_cast<std::size_t>(i)].score);
-      }
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int j = 1; j < std::min(options.jobs, options.trials); ++j)
-    workers.emplace_back(work);
-  work();
-  for (std::thread& w : workers)
-    w.join();
-  if (failure) std::rethrow_exception(failure);
-
+InteractionScopeResult summariseInteraction(DetectionScope scope,
+                                            std::vector<InteractionTrial> trials) {
   InteractionScopeResult result;
   result.scope = scope;
   double movementMsSum = 0;
   std::int64_t movementFrames = 0;
-  for (const TrialOutcome& o : outcomes) {
-    result.movements.add(o.score);
+  for (const InteractionTrial& o : trials) {
+    result.movements.add(o.movements);
     result.tracking.add(o.tracking);
     movementMsSum +=
         o.tracking.stageMs("movement") * static_cast<double>(o.tracking.summary.completed);
     movementFrames += o.tracking.summary.completed;
   }
+  result.tracking.scope = scope;
   result.movementMs = movementFrames ? movementMsSum / static_cast<double>(movementFrames) : 0;
+  result.trials = std::move(trials);
   return result;
 }
 
