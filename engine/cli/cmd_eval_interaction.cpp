@@ -3,36 +3,66 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
 
 #include "commands.hpp"
+#include "eval/interaction_report.hpp"
+#include "eval/seed_ranges.hpp"
 #include "horopter/error.hpp"
 #include "horopter/interaction_eval.hpp"
 #include "horopter/movement_training.hpp"
+#include "report_format.hpp"
 
 namespace horopter::cli {
 
 namespace {
 
-std::string scopeJson(const InteractionScopeResult& r) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "{\"tracker_loss\": %.2f, \"classification_rate\": %.2f, "
-                "\"real_classification_rate\": %.2f, \"fps\": %.2f, \"movements\": %d, "
-                "\"lost\": %d, \"correct\": %d, \"spurious\": %d, \"frame_tracker_loss\": %.2f, "
-                "\"end_to_end_fps\": %.2f, \"movement_ms\": %.4f}",
-                r.movements.trackerLossPct(), r.movements.classificationPct(),
-                r.movements.realClassificationPct(), r.visionFps(), r.movements.segments,
-                r.movements.lost, r.movements.correctTracked, r.movements.spurious,
-                100.0 * r.tracking.trackerLoss(), r.tracking.fps(), r.movementMs);
-  return buf;
+void printRow(const char* name, const InteractionScopeResult& r) {
+  const eval::InteractionIntervals ci = eval::interactionIntervals(r);
+  std::printf("%-16s %9d %19s %19s %19s %19s %8d/%-3zu %8.1f %8.1f\n", name, r.movements.segments,
+              interval(ci.trackerLoss).c_str(), interval(ci.classification).c_str(),
+              interval(ci.realClassification).c_str(), interval(ci.frameTrackerLoss).c_str(),
+              r.trialsLostAll(), r.trials.size(), r.visionFps(), r.tracking.fps());
 }
 
-void printRow(const char* name, const InteractionScopeResult& r) {
-  std::printf("%-16s %9d %8.1f %8.1f %8.1f %10.1f %9d %8.1f %8.1f %9.3f\n", name,
-              r.movements.segments, r.movements.trackerLossPct(), r.movements.classificationPct(),
-              r.movements.realClassificationPct(), 100.0 * r.tracking.trackerLoss(),
-              r.movements.spurious, r.visionFps(), r.tracking.fps(), r.movementMs);
+void printWorst(const char* name, const InteractionScopeResult& r) {
+  std::printf("%s, worst trials (seed: lost/movements, frame loss):", name);
+  for (const InteractionTrial* t : eval::worstInteractionTrials(r, 5))
+    std::printf("  %llu: %d/%d, %.1f%%", static_cast<unsigned long long>(t->seed),
+                t->movements.lost, t->movements.segments, 100.0 * t->tracking.trackerLoss());
+  std::printf("\n");
+}
+
+// Every trial that lost more than one movement, with the first cause of its
+// losses that holds (trialFailureCause), then the causes counted.
+void printFailures(std::FILE* out, const char* name, const InteractionScopeResult& r,
+                   double framesPerSecond) {
+  std::map<std::string, int> byCause;
+  std::fprintf(out, "%s, trials that lost more than one movement:\n", name);
+  for (const InteractionTrial& t : r.trials) {
+    if (t.movements.lost <= 1) continue;
+    const TrialDiagnosis& d = t.diagnosis;
+    const std::string cause = trialFailureCause(d, framesPerSecond);
+    ++byCause[cause];
+    std::fprintf(out,
+                 "  seed %llu: lost %d/%d movements, frame loss %.1f%%, elected at frame %lld "
+                 "(truth %lld), %d release(s); cause %s; lost frames by part:cause",
+                 static_cast<unsigned long long>(t.seed), t.movements.lost, t.movements.segments,
+                 100.0 * t.tracking.trackerLoss(), static_cast<long long>(d.trackerElectedFrame),
+                 static_cast<long long>(d.truthElectedFrame), d.releases, cause.c_str());
+    static const char* const kParts[3] = {"head", "left", "right"};
+    for (int part = 0; part < 3; ++part)
+      for (int c = 0; c < static_cast<int>(LossCause::Count); ++c)
+        if (d.causes.counts[part][c] > 0)
+          std::fprintf(out, " %s:%s %lld", kParts[part], lossCauseName(static_cast<LossCause>(c)),
+                       static_cast<long long>(d.causes.counts[part][c]));
+    std::fprintf(out, "\n");
+  }
+  std::fprintf(out, "%s, failed trials by cause:", name);
+  for (const auto& [cause, count] : byCause)
+    std::fprintf(out, "  %s %d", cause.c_str(), count);
+  std::fprintf(out, "\n");
 }
 
 }  // namespace
@@ -63,8 +93,14 @@ int runEvalInteraction(Args& args) {
            "             stage's mean ms (one frame through every stage, one at a time)\n"
            "  e2e fps    frames per second of the whole run, rendering included\n"
            "  move ms    the movement stage, ms per frame\n\n"
-           "The model was trained on seeds 1000000.. and tuned on 2000000..; use trial seeds\n"
-           "below 1000000 for held-out results.\n\n"
+           "Each rate comes with its 95 % confidence interval (percentile bootstrap over\n"
+           "trials, 4000 resamples), with the trials that lost every movement (lost-all) and\n"
+           "the five worst trials.\n\n"
+           "Seeds (docs/evaluation.md): trials take seeds from the tuning range 0-499999 or the\n"
+           "evaluation range 500000-999999, never both; the movement model was trained on\n"
+           "1000000.. and tuned on 2000000... A reported figure comes from a fresh block of at\n"
+           "least 100 evaluation seeds, run once; --write-tracks (a look inside the trials) is\n"
+           "refused on evaluation seeds.\n\n"
            "Options:\n"
            "  --trials N         trials (default 20)\n"
            "  --seed S           first trial's seed (default 1)\n"
@@ -79,11 +115,20 @@ int runEvalInteraction(Args& args) {
            "  --jobs N           trials run N at a time (default 1); the rates do not depend\n"
            "                     on it, but fps and e2e fps are then measured with the\n"
            "                     trials competing for the cores\n"
+           "  --diagnose         list every trial that lost more than one movement with the\n"
+           "                     first cause that holds: never-elected, released (the\n"
+           "                     godfather lost), elected-late (over 1 s after the truth), or\n"
+           "                     the part and cause with the most lost frames (see\n"
+           "                     horopter eval-tracking --diagnose); tuning seeds only\n"
            "  --write-tracks DIR write each trial's tracked body with the truth to\n"
            "                     DIR/<scope>_<seed>.csv (for horopter classify --track)\n"
-           "  --json             one JSON object {\"full\": {...}, \"roi\": {...}}, percentages\n"
-           "                     0-100: tracker_loss, classification_rate,\n"
-           "                     real_classification_rate, fps, and the counts\n"
+           "  --json             one JSON object: seeds, frames, and {\"full\": {...}, \"roi\":\n"
+           "                     {...}}, each with percentages 0-100 (tracker_loss,\n"
+           "                     classification_rate, real_classification_rate,\n"
+           "                     frame_tracker_loss, each with its _ci95 [low, high]), the\n"
+           "                     counts, trials_lost_all, worst_trials, per_trial (every\n"
+           "                     trial's outcome) and timing (frames/s and stage times: the\n"
+           "                     only part that depends on the machine)\n"
            "  --require-region-better  exit 1 unless the region's real classification rate\n"
            "                     beats the full image's (needs --scope both)\n";
     return 0;
@@ -100,6 +145,7 @@ int runEvalInteraction(Args& args) {
   options.trial.backend = args.stringValue("--backend", "auto");
   options.jobs = args.intValue("--jobs", 1);
   options.writeTracksDir = args.stringValue("--write-tracks", "");
+  options.diagnose = args.flag("--diagnose");
   const bool json = args.flag("--json");
   const bool requireBetter = args.flag("--require-region-better");
   args.finish("eval-interaction");
@@ -126,9 +172,9 @@ int runEvalInteraction(Args& args) {
   if (requireBetter && scopeName != "both")
     throw Error("--require-region-better needs --scope both");
   options.trial.seed = static_cast<std::uint64_t>(seed);
-  if (options.trial.seed + options.trials > kEvaluationSeedLimit)
-    std::cerr << "warning: trial seeds reach " << kEvaluationSeedLimit
-              << " and above, the training and tuning range\n";
+  const eval::SeedUse seedUse = eval::trialSeedUse(options.trial.seed, options.trials, "--seed");
+  if (!options.writeTracksDir.empty()) eval::requireTuningSeeds(seedUse, "--write-tracks");
+  if (options.diagnose) eval::requireTuningSeeds(seedUse, "--diagnose");
   if (!options.writeTracksDir.empty()) std::filesystem::create_directories(options.writeTracksDir);
   options.model = loadOrTrainMovementModel(modelPath);
   options.progress = [&](DetectionScope scope, int i, const MovementScore& s) {
@@ -145,22 +191,36 @@ int runEvalInteraction(Args& args) {
   const bool better =
       roi.movements.realClassificationPct() > full.movements.realClassificationPct();
   if (json) {
-    std::printf("{");
-    if (runFull) std::printf("\"full\": %s", scopeJson(full).c_str());
-    if (runFull && runRoi) std::printf(", ");
-    if (runRoi) std::printf("\"roi\": %s", scopeJson(roi).c_str());
-    std::printf("}\n");
+    eval::Json out{{"seed_use", eval::seedUseName(seedUse)},
+                   {"trials", options.trials},
+                   {"seed_first", seed},
+                   {"seed_last", seed + options.trials - 1},
+                   {"frames", options.trial.frames},
+                   {"width", options.trial.width},
+                   {"height", options.trial.height}};
+    if (runFull) out["full"] = eval::interactionScopeJson(full);
+    if (runRoi) out["roi"] = eval::interactionScopeJson(roi);
+    writeJsonLine(out.dump());
   } else {
-    std::printf("%d trials (seeds %d-%d), %d frames each at %dx%d\n", options.trials, seed,
-                seed + options.trials - 1, options.trial.frames, options.trial.width,
-                options.trial.height);
-    std::printf("%-16s %9s %8s %8s %8s %10s %9s %8s %8s %9s\n", "scope", "movements", "loss%",
-                "class%", "real%", "frame-loss%", "spurious", "fps", "e2e fps", "move ms");
+    std::printf("%d trials (seeds %d-%d, %s), %d frames each at %dx%d\n", options.trials, seed,
+                seed + options.trials - 1, eval::seedUseName(seedUse), options.trial.frames,
+                options.trial.width, options.trial.height);
+    std::printf("%-16s %9s %19s %19s %19s %19s %12s %8s %8s\n", "scope", "movements",
+                "loss% [95% CI]", "class% [95% CI]", "real% [95% CI]", "frame-loss% [CI]",
+                "lost-all", "fps", "e2e fps");
     if (runFull) printRow("full-image", full);
     if (runRoi) printRow("horopter-region", roi);
+    if (runFull) printWorst("full-image", full);
+    if (runRoi) printWorst("horopter-region", roi);
     if (runFull && runRoi)
       std::printf("region vs full image: real classification %s\n",
                   better ? "higher" : "NOT higher");
+    std::printf("%s\n", reportability(seedUse, options.trials).c_str());
+  }
+  if (options.diagnose) {
+    const double fps = trialScene(options.trial).framesPerSecond;
+    if (runFull) printFailures(json ? stderr : stdout, "full-image", full, fps);
+    if (runRoi) printFailures(json ? stderr : stdout, "horopter-region", roi, fps);
   }
   if (requireBetter && !better) {
     std::cerr << "horopter eval-interaction: the region's real classification rate ("

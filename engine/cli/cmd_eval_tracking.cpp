@@ -3,17 +3,24 @@
 // and over the full image.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "commands.hpp"
+#include "eval/bootstrap.hpp"
+#include "eval/parallel_trials.hpp"
+#include "eval/seed_ranges.hpp"
 #include "horopter/error.hpp"
 #include "horopter/tracking_eval.hpp"
+#include "report_format.hpp"
 #include "run_annotation.hpp"
 
 namespace horopter::cli {
@@ -28,8 +35,13 @@ const char* kEvalTrackingHelp =
     "and over the full image. Trial i uses seed S + i: the main person's distance (1.0-1.7 m),\n"
     "lighting gain (0.7-1.3) and sensor noise (0-6 grey levels) come from it; every trial\n"
     "has skin-coloured clutter and a distractor outside the zone.\n\n"
+    "Seeds (docs/evaluation.md): trials take seeds from the tuning range 0-499999 or the\n"
+    "evaluation range 500000-999999, never both. --diagnose and --stills look\n"
+    "inside the trials and are refused on evaluation seeds; a reported figure comes from a\n"
+    "fresh block of at least 100 evaluation seeds, run once.\n\n"
     "Prints for each scope:\n"
-    "  loss      tracker loss: frames with a godfather by the truth (the main person inside\n"
+    "  loss      tracker loss, with its 95 % confidence interval (bootstrap over trials): frames "
+    "with a godfather by the truth (the main person inside\n"
     "            the zone for T s) where the head or a visible hand has no track, or one\n"
     "            further than max(20 px, half the face width)\n"
     "  head/left/right  the same per part (left, right: the person's own)\n"
@@ -39,6 +51,8 @@ const char* kEvalTrackingHelp =
     "  fps       frames per second of the whole pipeline, rendering the scene included\n\n"
     "Options:\n"
     "  --trials N         number of trials (default 20)\n"
+    "  --jobs N           trials run N at a time (default 1); the scores do not depend on\n"
+    "                     it, the times do (the trials compete for the cores)\n"
     "  --seed S           first trial's seed (default 1000)\n"
     "  --frames F         frames per trial (default 300, 10 s at 30 frames/s)\n"
     "  --size WxH         image size (default 640x480)\n"
@@ -89,7 +103,9 @@ const char* kEvalTrackingHelp =
     "                     face-neck-cut, merged, no-skin, removed (no detection near the\n"
     "                     truth), filtered, no-track, swapped, elsewhere (a detection there,\n"
     "                     the track not); with -v, one line per lost part on stderr\n"
-    "  --json             print the results as one JSON object\n"
+    "  --json             print the results as one JSON object: per scope the figures,\n"
+    "                     tracker_loss_ci95 (95 % bootstrap interval over trials, as a\n"
+    "                     fraction), worst_trials and per_trial\n"
     "  -v, --verbose      one line per trial on stderr\n";
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -98,8 +114,48 @@ void parseSize(const std::string& text, int& width, int& height) {
     throw Error("--size must be WxH with both between 64 and 4096, got '" + text + "'");
 }
 
-std::string scoreJson(const ScopeScore& s) {
+struct TrackingTrial {
+  TrialResult result;
+  LossDiagnosis causes;
+  long long fullSearches = 0;  // frames whose faces were searched over the whole region
+};
+
+eval::RatioEstimate lossInterval(const std::vector<TrackingTrial>& trials) {
+  std::vector<double> lost, of;
+  for (const TrackingTrial& t : trials) {
+    lost.push_back(static_cast<double>(t.result.lostFrames));
+    of.push_back(static_cast<double>(t.result.godfatherFrames));
+  }
+  return eval::bootstrapRatio(lost, of);
+}
+
+// Worst first: the highest loss, then the lowest seed.
+std::vector<const TrialResult*> worstTrials(const std::vector<TrackingTrial>& trials, int count) {
+  std::vector<const TrialResult*> order;
+  for (const TrackingTrial& t : trials)
+    order.push_back(&t.result);
+  std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) {
+    return a->trackerLoss() != b->trackerLoss() ? a->trackerLoss() > b->trackerLoss()
+                                                : a->seed < b->seed;
+  });
+  order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(count)));
+  return order;
+}
+
+std::string trialJson(const TrialResult& r) {
   std::ostringstream o;
+  o << "{\"seed\":" << r.seed << ",\"godfather_frames\":" << r.godfatherFrames
+    << ",\"lost_frames\":" << r.lostFrames << ",\"tracker_loss\":" << r.trackerLoss()
+    << ",\"head_lost\":" << r.head.lost << ",\"left_hand_lost\":" << r.leftHand.lost
+    << ",\"right_hand_lost\":" << r.rightHand.lost << ",\"detections\":" << r.detections
+    << ",\"false_detections\":" << r.falseDetections << "}";
+  return o.str();
+}
+
+std::string scoreJson(const ScopeScore& s, const std::vector<TrackingTrial>& trials) {
+  std::ostringstream o;
+  o.precision(17);
+  const eval::RatioEstimate ci = lossInterval(trials);
   o << "{\"scope\":\"" << detectionScopeName(s.scope) << "\",\"trials\":" << s.trials
     << ",\"frames\":" << s.frames << ",\"godfather_frames\":" << s.godfatherFrames
     << ",\"lost_frames\":" << s.lostFrames << ",\"tracker_loss\":" << s.trackerLoss()
@@ -111,7 +167,17 @@ std::string scoreJson(const ScopeScore& s) {
     << ",\"detections\":" << s.detections << ",\"false_detections\":" << s.falseDetections
     << ",\"false_positive_rate\":" << s.falsePositiveRate() << ",\"detection_ms\":" << s.detectionMs
     << ",\"tracking_ms\":" << s.trackingMs << ",\"vision_ms\":" << s.visionMs
-    << ",\"fps\":" << s.fps() << "}";
+    << ",\"fps\":" << s.fps() << ",\"tracker_loss_ci95\":[" << ci.low << "," << ci.high << "]"
+    << ",\"worst_trials\":[";
+  const char* sep = "";
+  for (const TrialResult* r : worstTrials(trials, 5))
+    o << std::exchange(sep, ",") << "{\"seed\":" << r->seed
+      << ",\"tracker_loss\":" << r->trackerLoss() << "}";
+  o << "],\"per_trial\":[";
+  sep = "";
+  for (const TrackingTrial& t : trials)
+    o << std::exchange(sep, ",") << trialJson(t.result);
+  o << "]}";
   return o.str();
 }
 
@@ -128,6 +194,7 @@ int runEvalTracking(Args& args) {
   }
   TrialOptions base;
   const int trials = args.intValue("--trials", 20);
+  const int jobs = args.intValue("--jobs", 1);
   const long long seed = std::stoll(args.stringValue("--seed", "1000"));
   base.frames = args.intValue("--frames", 300);
   if (auto size = args.value("--size")) parseSize(*size, base.width, base.height);
@@ -163,8 +230,13 @@ int runEvalTracking(Args& args) {
   const std::string stills = args.stringValue("--stills", "");
   const bool diagnose = args.flag("--diagnose");
   args.finish("eval-tracking");
-  if (trials < 1) throw Error("--trials must be >= 1");
+  if (trials < 1 || trials > 100000) throw Error("--trials must be within 1..100000");
+  if (jobs < 1 || jobs > 64) throw Error("--jobs must be within 1..64");
   if (seed < 0) throw Error("--seed must be >= 0");
+  const eval::SeedUse seedUse =
+      eval::trialSeedUse(static_cast<std::uint64_t>(seed), trials, "--seed");
+  if (diagnose) eval::requireTuningSeeds(seedUse, "--diagnose");
+  if (!stills.empty()) eval::requireTuningSeeds(seedUse, "--stills");
   if (base.frames < 1) throw Error("--frames must be >= 1");
   if (base.detector.fullSearchEvery < 1) throw Error("--full-search-every must be >= 1");
   if (base.stereo.numDisparities < 16 || base.stereo.numDisparities % 16 != 0)
@@ -182,20 +254,18 @@ int runEvalTracking(Args& args) {
   if (scope != "region") scopes.push_back(DetectionScope::FullImage);
   std::vector<ScopeScore> scores(scopes.size());
   std::vector<LossDiagnosis> causes(scopes.size());
-  if (verbose)
-    for (LossDiagnosis& c : causes)
-      c.log = stderr;
+  std::vector<std::vector<TrackingTrial>> perTrial(scopes.size());
   const bool tty = isatty(STDERR_FILENO) && !json;
-  for (int i = 0; i < trials; ++i) {
-    TrialOptions o = base;
-    o.seed = static_cast<std::uint64_t>(seed) + static_cast<std::uint64_t>(i);
-    for (std::size_t k = 0; k < scopes.size(); ++k) {
-      if (tty)
-        std::fprintf(stderr, "\rtrial %d/%d (seed %llu), %s...        ", i + 1, trials,
-                     static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]));
+  if (!stills.empty()) std::filesystem::create_directories(stills);
+  for (std::size_t k = 0; k < scopes.size(); ++k) {
+    int finished = 0;
+    const auto runOne = [&, k](int i) {
+      TrialOptions o = base;
+      o.seed = static_cast<std::uint64_t>(seed) + static_cast<std::uint64_t>(i);
+      TrackingTrial trial;
+      if (verbose) trial.causes.log = stderr;
       TrialFrameCallback dump;
       if (!stills.empty()) {
-        std::filesystem::create_directories(stills);
         dump = [&, scope = scopes[k], trialSeed = o.seed](const TrialFrame& t) {
           if (t.frame.index % 10 != 0) return;
           cv::Mat view = annotateFrame(t.frame, o.stereo, 0);
@@ -210,23 +280,38 @@ int runEvalTracking(Args& args) {
           if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
         };
       }
-      long long fullSearches = 0;  // frames whose faces were searched over the whole region
-      TrialFrameCallback onFrame = [&, dump, k](const TrialFrame& t) {
+      TrialFrameCallback onFrame = [&](const TrialFrame& t) {
         if (dump) dump(t);
-        if (diagnose) causes[k].add(t, o);
-        if (t.frame.detections && t.frame.detections->fullFaceSearch) ++fullSearches;
+        if (diagnose) trial.causes.add(t, o);
+        if (t.frame.detections && t.frame.detections->fullFaceSearch) ++trial.fullSearches;
       };
-      const TrialResult r = runTrackingTrial(o, scopes[k], {}, onFrame);
-      scores[k].add(r);
+      trial.result = runTrackingTrial(o, scopes[k], {}, onFrame);
+      trial.result.summary.trace.clear();
+      return trial;
+    };
+    const auto done = [&, k](int, const TrackingTrial& t) {
+      ++finished;
+      const TrialResult& r = t.result;
+      if (tty)
+        std::fprintf(stderr, "\r%s: %d/%d trials done (seed %llu last)...        ",
+                     detectionScopeName(scopes[k]), finished, trials,
+                     static_cast<unsigned long long>(r.seed));
       if (verbose)
         std::fprintf(
             stderr,
             "%sseed %llu %-15s loss %5.1f%% (%lld/%lld)  FP %5.1f%%  detect %.2f ms  full face "
             "searches %lld/%lld\n",
-            tty ? "\r" : "", static_cast<unsigned long long>(o.seed), detectionScopeName(scopes[k]),
+            tty ? "\r" : "", static_cast<unsigned long long>(r.seed), detectionScopeName(scopes[k]),
             100 * r.trackerLoss(), static_cast<long long>(r.lostFrames),
             static_cast<long long>(r.godfatherFrames), 100 * r.falsePositiveRate(),
-            r.stageMs("detection"), fullSearches, static_cast<long long>(r.frames));
+            r.stageMs("detection"), t.fullSearches, static_cast<long long>(r.frames));
+    };
+    perTrial[k] = eval::runTrials<TrackingTrial>(trials, jobs, runOne, done);
+    for (const TrackingTrial& t : perTrial[k]) {
+      scores[k].add(t.result);
+      for (int part = 0; part < 3; ++part)
+        for (int c = 0; c < static_cast<int>(LossCause::Count); ++c)
+          causes[k].counts[part][c] += t.causes.counts[part][c];
     }
   }
   if (tty) std::fprintf(stderr, "\r%60s\r", "");
@@ -234,17 +319,18 @@ int runEvalTracking(Args& args) {
   const bool better = scores.size() == 2 && scores[0].trackerLoss() < scores[1].trackerLoss();
   if (json) {
     std::printf(
-        "{\"trials\":%d,\"seed\":%lld,\"frames\":%d,\"width\":%d,\"height\":%d,\"scopes\":[",
-        trials, seed, base.frames, base.width, base.height);
+        "{\"trials\":%d,\"seed\":%lld,\"seed_use\":\"%s\",\"frames\":%d,\"width\":%d,"
+        "\"height\":%d,\"scopes\":[",
+        trials, seed, eval::seedUseName(seedUse), base.frames, base.width, base.height);
     for (std::size_t k = 0; k < scores.size(); ++k)
-      std::printf("%s%s", k ? "," : "", scoreJson(scores[k]).c_str());
+      std::printf("%s%s", k ? "," : "", scoreJson(scores[k], perTrial[k]).c_str());
     std::printf("]");
     if (scores.size() == 2) std::printf(",\"region_better\":%s", better ? "true" : "false");
     std::printf("}\n");
   } else {
-    std::printf("%d trials (seeds %lld-%lld), %d frames each at %dx%d, head control %s\n", trials,
-                seed, seed + trials - 1, base.frames, base.width, base.height,
-                base.headControl ? formula.c_str() : "off");
+    std::printf("%d trials (seeds %lld-%lld, %s), %d frames each at %dx%d, head control %s\n",
+                trials, seed, seed + trials - 1, eval::seedUseName(seedUse), base.frames,
+                base.width, base.height, base.headControl ? formula.c_str() : "off");
     std::printf("%-16s %9s %7s %6s %6s %6s %6s %6s %9s %9s %6s\n", "scope", "godfather", "loss%",
                 "head%", "left%", "right%", "FP%", "dets", "detect ms", "vision ms", "fps");
     for (const ScopeScore& s : scores)
@@ -254,6 +340,17 @@ int runEvalTracking(Args& args) {
                   pct(s.leftHand.lost, s.leftHand.visible),
                   pct(s.rightHand.lost, s.rightHand.visible), 100 * s.falsePositiveRate(),
                   static_cast<long long>(s.detections), s.detectionMs, s.visionMs, s.fps());
+    for (std::size_t k = 0; k < scores.size(); ++k) {
+      eval::RatioEstimate ci = lossInterval(perTrial[k]);
+      ci.value *= 100, ci.low *= 100, ci.high *= 100;
+      std::printf("%s: loss %% [95%% CI] %s; worst trials (seed: loss):",
+                  detectionScopeName(scores[k].scope), interval(ci).c_str());
+      for (const TrialResult* r : worstTrials(perTrial[k], 5))
+        std::printf("  %llu: %.1f%%", static_cast<unsigned long long>(r->seed),
+                    100 * r->trackerLoss());
+      std::printf("\n");
+    }
+    std::printf("%s\n", reportability(seedUse, trials).c_str());
     if (scores.size() == 2)
       std::printf("region vs full image: tracker loss %s, detection %.1fx faster\n",
                   better ? "lower" : "NOT lower",
