@@ -15,5 +15,6 @@ void bindCalibration(py::module_& m);  // calibration files, rectification
 void bindScene(py::module_& m);        // the synthetic stereo scene
 void bindPipeline(py::module_& m);     // the frame pipeline, iterated from Python
 void bindMovement(py::module_& m);     // the movement classifier, body tracks
+void bindEval(py::module_& m);         // Table III one trial at a time, and its summary
 
 }  // namespace horopter::python

@@ -25,4 +25,5 @@ PYBIND11_MODULE(horopter, m) {
   horopter::python::bindScene(m);
   horopter::python::bindPipeline(m);
   horopter::python::bindMovement(m);
+  horopter::python::bindEval(m);
 }
