@@ -80,6 +80,10 @@ const char* kEvalTrackingHelp =
     "  --min-neighbors N  the cascade's grouping threshold (default 3)\n"
     "  --face-zone-cover F  a face is inside the zone when the mask covers this fraction\n"
     "                     of its central half (default 0.3)\n"
+    "  --min-skin-luma F  hand skin darker than F times the face's skin is not skin\n"
+    "                     (default 0.5; 0: off)\n"
+    "  --min-hand-luma F  a hand candidate's mean grey level must be at least F times the\n"
+    "                     face's skin (default 0.55; 0: no limit): skin-coloured cloth is darker\n"
     "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
     "                     candidate on its side nearest to it (default 0.1; 0: never)\n"
     "  --blind-follow-s T  where stereo is blind (left of what the right camera sees, or\n"
@@ -218,6 +222,10 @@ int runEvalTracking(Args& args) {
   base.detector.minNeighbors = args.intValue("--min-neighbors", base.detector.minNeighbors);
   base.detector.faceZoneCover = args.doubleValue("--face-zone-cover", base.detector.faceZoneCover);
   base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
+  base.detector.minSkinLumaOfFace =
+      args.doubleValue("--min-skin-luma", base.detector.minSkinLumaOfFace);
+  base.tracker.minHandLumaOfFace =
+      args.doubleValue("--min-hand-luma", base.tracker.minHandLumaOfFace);
   base.tracker.blindFollowS = args.doubleValue("--blind-follow-s", base.tracker.blindFollowS);
   base.tracker.blindMinScore = args.doubleValue("--blind-min-score", base.tracker.blindMinScore);
   if (args.flag("--frame-hands")) base.head.frameHands = true;

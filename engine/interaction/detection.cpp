@@ -23,7 +23,8 @@ struct Detector::Impl {
   detail::FaceSearch faces;
   DetectorOptions acquiring;  // the options with the acquisition's face scale
   bool facesFound = false;    // in the previous frame
-  cv::Mat skin, grown, labels, stats, centroids, distance;
+  cv::Mat skin, grown, grey, bright, labels, stats, centroids, distance;
+  float faceLuma = 0;  // the skin's grey level in the last face found (0: none yet)
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
 };
 
@@ -40,6 +41,8 @@ Detector::Detector(DetectorOptions options) : options_(std::move(options)) {
   if (o.maskErodePx < -1 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 ||
       o.minHandAreaPx < 1)
     throw Error("mask growth, opening and closing must be >= 0 px and the hand area >= 1 px");
+  if (!(o.minSkinLumaOfFace >= 0 && o.minSkinLumaOfFace <= 4))
+    throw Error("minSkinLumaOfFace (skin's grey level over the face's) must be in [0, 4]");
   if (!(o.acquisitionFaceScale >= 0.25 && o.acquisitionFaceScale <= 1))
     throw Error("the acquisition's face scale must be in [0.25, 1]");
   impl_ = std::make_unique<Impl>(o);  // checks the face options, loads the cascade
@@ -101,6 +104,25 @@ Detections Detector::detect(const Frame& frame) {
   const bool haveDisparity = region && !frame.disparity.empty() &&
                              frame.disparity.type() == CV_16SC1 &&
                              frame.disparity.size() == frame.left.size();
+  cv::cvtColor(colour(roi), m.grey, cv::COLOR_BGR2GRAY);
+  for (FaceDetection& f : d.faces) {
+    const cv::Rect centre =
+        cv::Rect(f.box.x + f.box.width / 4 - roi.x, f.box.y + f.box.height / 4 - roi.y,
+                 f.box.width / 2, f.box.height / 2) &
+        cv::Rect(0, 0, roi.width, roi.height);
+    if (!centre.empty() && cv::countNonZero(m.skin(centre)) > 0)
+      f.skinLuma = static_cast<float>(cv::mean(m.grey(centre), m.skin(centre))[0]);
+  }
+  // Skin darker than a fraction of the face's: cloth whose chroma is
+  // skin's, which joins a hand to its sleeve into one blob off the hand.
+  const FaceDetection* lit = nullptr;
+  for (const FaceDetection& f : d.faces)
+    if (f.skinLuma > 0 && (f.insideZone || !region) && (!lit || f.width > lit->width)) lit = &f;
+  if (lit) m.faceLuma = lit->skinLuma;
+  if (o.minSkinLumaOfFace > 0 && m.faceLuma > 0) {
+    cv::compare(m.grey, o.minSkinLumaOfFace * m.faceLuma, m.bright, cv::CMP_GE);
+    cv::bitwise_and(m.skin, m.bright, m.skin);
+  }
   for (const FaceDetection& f : d.faces) {
     const int mx = static_cast<int>(o.faceMargin * f.box.width);
     cv::Rect out(f.box.x - mx - roi.x, f.box.y - mx - roi.y, f.box.width + 2 * mx,
@@ -121,15 +143,18 @@ Detections Detector::detect(const Frame& frame) {
                       frame.rightGrey.size() == frame.left.size() &&
                       frame.leftGrey.type() == CV_8UC1 && frame.rightGrey.type() == CV_8UC1;
   std::vector<int> agree(static_cast<std::size_t>(n), 0), measured(static_cast<std::size_t>(n), 0);
+  std::vector<std::int64_t> lumaSum(static_cast<std::size_t>(n), 0);
   for (int y = 0; y < m.skin.rows; ++y) {
     const auto* l = m.labels.ptr<int>(y);
     const auto* dist = m.distance.ptr<float>(y);
+    const auto* grey = m.grey.ptr<std::uint8_t>(y);
     const std::int16_t* disp = stereo ? frame.disparity.ptr<std::int16_t>(y + roi.y) : nullptr;
     const std::uint8_t* lg = stereo ? frame.leftGrey.ptr<std::uint8_t>(y + roi.y) : nullptr;
     const std::uint8_t* rg = stereo ? frame.rightGrey.ptr<std::uint8_t>(y + roi.y) : nullptr;
     for (int x = 0; x < m.skin.cols; ++x) {
       if (l[x] <= 0) continue;
       radius[l[x]] = std::max(radius[l[x]], dist[x]);
+      lumaSum[l[x]] += grey[x];
       if (!stereo || disp[x + roi.x] <= 0) continue;
       const int xr = x + roi.x - (disp[x + roi.x] + 8) / 16;
       if (xr < 0) continue;
@@ -143,6 +168,8 @@ Detections Detector::detect(const Frame& frame) {
     HandDetection h;
     h.areaPx = area;
     h.radiusPx = radius[static_cast<std::size_t>(i)];
+    h.meanLuma =
+        static_cast<float>(lumaSum[static_cast<std::size_t>(i)]) / static_cast<float>(area);
     if (measured[static_cast<std::size_t>(i)] > 0)
       h.stereoAgreement = static_cast<float>(agree[static_cast<std::size_t>(i)]) /
                           measured[static_cast<std::size_t>(i)];

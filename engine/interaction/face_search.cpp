@@ -60,6 +60,8 @@ FaceSearch::FaceSearch(const DetectorOptions& o) {
         o.depthFacePercentiles[1] <= 1) ||
       !(o.depthFaceMargin >= 1))
     throw Error("depth face sizes need percentiles 0 <= far <= near <= 1 and a margin >= 1");
+  if (o.depthSizeForgetSearches < 1)
+    throw Error("depthSizeForgetSearches must be >= 1 (full searches without a face)");
   if (!(o.faceZoneCover >= 0 && o.faceZoneCover <= 1))
     throw Error("faceZoneCover (the zone's share of a face's centre) must be in [0, 1]");
   if (o.minFacePx != 0 && o.minFacePx < 20)
@@ -247,6 +249,19 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const Frame& frame,
     result.faces.push_back(f);
   }
   if (region && o.depthFaceSizes) learnWidthPerDisparity(frame, result.faces);
+  // k learnt from faces that were not faces (a false detection in the zone)
+  // bounds the sizes away from the real one, which is then never found
+  // (tuning seeds 10033 and 10048: never elected). Full searches sized by depth that
+  // keep finding nothing forget k, and search every size until it is learnt
+  // again.
+  if (searchAll && depthSizes.valid()) {
+    emptySizedSearches_ = result.faces.empty() ? emptySizedSearches_ + 1 : 0;
+    if (emptySizedSearches_ >= o.depthSizeForgetSearches) {
+      widthPerDisparity_.clear();
+      nextSample_ = 0;
+      emptySizedSearches_ = 0;
+    }
+  }
   // Followed next frame: the faces found, and those not found again for at
   // most followMissFrames frames (the cascade misses a face now and then; a
   // miss then costs no full search).

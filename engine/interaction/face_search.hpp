@@ -57,6 +57,7 @@ class FaceSearch {
   // Face width / disparity (px per px) of the last faces found in the zone.
   std::vector<float> widthPerDisparity_;
   std::size_t nextSample_ = 0;
+  int emptySizedSearches_ = 0;        // consecutive full searches sized by depth that found no face
   std::vector<std::int16_t> depths_;  // scratch
 };
 

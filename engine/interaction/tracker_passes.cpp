@@ -97,11 +97,13 @@ std::optional<bool> associateHead(SubjectTracks& s, const Detections& det, doubl
     if (!best) return std::nullopt;
     s.head.emplace(best->centre, t, o.head);
     s.faceWidth = best->width;
+    s.faceLuma = best->skinLuma;
     return true;
   }
   if (const FaceDetection* best = nearestFaceInGate(*s.head, det.faces)) {
     s.head->update(best->centre);
     s.faceWidth = best->width;
+    if (best->skinLuma > 0) s.faceLuma = best->skinLuma;
     return best->insideZone;
   }
   // The cascade missed the face: its skin blob (face and neck, large and
@@ -133,7 +135,7 @@ bool faceOrNeck(cv::Point2f c, cv::Point2f head, double fw) {
 
 std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<HandDetection>& hands,
                                                           cv::Point2f head, double fw,
-                                                          const TrackerOptions& o) {
+                                                          const TrackerOptions& o, float faceLuma) {
   std::vector<const HandDetection*> candidates;
   for (const HandDetection& c : hands) {
     // The face and neck themselves, where the detector missed the face this
@@ -146,7 +148,9 @@ std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<Hand
     // A small candidate needs more agreement between the views.
     const bool small =
         c.areaPx < o.smallHandAreaFaces * fw * fw || c.radiusPx < o.smallHandRadiusFaces * fw;
-    if (inReach && handSized &&
+    // Skin-coloured cloth is far darker than the face's skin under the same light.
+    const bool bright = !(faceLuma > 0) || c.meanLuma >= o.minHandLumaOfFace * faceLuma;
+    if (inReach && handSized && bright &&
         c.stereoAgreement >= (small ? o.smallHandMinAgreement : o.minStereoAgreement))
       candidates.push_back(&c);
   }
@@ -154,12 +158,12 @@ std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<Hand
 }
 
 HandFrame startHandFrame(const ConstantVelocityTrack& head, float faceWidth, const Detections& det,
-                         double t, const TrackerOptions& o) {
+                         double t, const TrackerOptions& o, float faceLuma) {
   HandFrame f;
   f.head = head.position();
   f.fw = std::max(1.0f, faceWidth);
   f.t = t;
-  f.candidates = plausibleHandCandidates(det.hands, f.head, f.fw, o);
+  f.candidates = plausibleHandCandidates(det.hands, f.head, f.fw, o, faceLuma);
   f.taken.assign(f.candidates.size(), false);
   return f;
 }

@@ -30,6 +30,7 @@ struct HandTrack {
 struct SubjectTracks {
   std::optional<ConstantVelocityTrack> head;
   float faceWidth = 0;  // the subject's last face width, px
+  float faceLuma = 0;   // the skin's grey level in the subject's last face (0: unknown)
   std::array<HandTrack, 2> hands;
 };
 
@@ -126,13 +127,15 @@ ElectionState updateElection(GodfatherElection& election, SubjectTracks& s,
 // them out only around the faces it finds).
 bool faceOrNeck(cv::Point2f c, cv::Point2f head, double fw);
 // The candidates that may be hands: not the face or neck, within reach, of
-// a hand's area and radius, and agreeing between the views.
+// a hand's area and radius, agreeing between the views, and, where the
+// face's skin luma is known, not much darker than it (minHandLumaOfFace).
 std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<HandDetection>& hands,
                                                           cv::Point2f head, double fw,
-                                                          const TrackerOptions& o);
+                                                          const TrackerOptions& o,
+                                                          float faceLuma = 0);
 // This frame's hand context: the plausible candidates, none taken.
 HandFrame startHandFrame(const ConstantVelocityTrack& head, float faceWidth, const Detections& det,
-                         double t, const TrackerOptions& o);
+                         double t, const TrackerOptions& o, float faceLuma = 0);
 
 // Gated nearest-first assignment of the candidates to the existing tracks:
 // one candidate per track and one track per candidate.

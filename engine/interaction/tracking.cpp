@@ -68,6 +68,9 @@ void validate(const TrackerOptions& o) {
       !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
       !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
     throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
+  if (!(o.minHandLumaOfFace >= 0 && o.minHandLumaOfFace <= 4))
+    throw Error(
+        "tracker minHandLumaOfFace (a hand's grey level over the face's) must be in [0, 4]");
   if (!(o.blindFollowS >= 0) || !(o.blindBandFaces >= 0) || !(o.blindNearFraction > 0) ||
       !(o.blindValidFraction >= 0 && o.blindValidFraction <= 1) || !(o.blindPatchFaces > 0) ||
       !(o.blindSearchFaces > 0) || !(o.blindMinScore >= -1 && o.blindMinScore <= 1) ||
@@ -175,7 +178,7 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
   // Hands: gated nearest-first assignment to the existing tracks, then new
   // tracks from the candidates nearest each hand's resting place.
   if (s.head) {
-    detail::HandFrame f = detail::startHandFrame(*s.head, s.faceWidth, det, t, o);
+    detail::HandFrame f = detail::startHandFrame(*s.head, s.faceWidth, det, t, o, s.faceLuma);
     detail::assignGated(s.hands, f, o);
     // Where stereo is blind, a hand missed by the detector is followed by
     // its look, before the steps below move it elsewhere.

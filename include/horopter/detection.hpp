@@ -74,6 +74,13 @@ struct DetectorOptions {
   bool depthFaceSizes = true;
   double depthFacePercentiles[2] = {0.1, 0.9};
   double depthFaceMargin = 1.4;
+  // After this many consecutive full searches sized by depth without a face
+  // (about 0.3 s at 30 frames/s), k is forgotten and every size searched
+  // until it is learnt again: a k learnt from a false detection would keep
+  // the real face out of the sizes searched for good (tuning seeds 10033
+  // and 10048: a false face in the zone before the person came, never
+  // elected).
+  int depthSizeForgetSearches = 10;
   // A face is inside the zone when the mask covers at least this fraction of
   // its central half (the region keeps only those), in [0, 1].
   double faceZoneCover = 0.3;
@@ -84,6 +91,12 @@ struct DetectorOptions {
   int maskClosePx = 11;
   int maskErodePx = -1;  // -1: a 160th of the width (4 px at 640, StereoBM's block 9)
   SkinModel skin;
+  // Once a face's skin luma is known (FaceDetection::skinLuma), hand skin
+  // darker than this fraction of it is not skin (0: off): cloth whose chroma
+  // is skin's is far darker than skin under the same light, and would join
+  // a hand to its sleeve into one blob whose centroid is off the hand
+  // (tuning seed 10053, a brown shirt).
+  double minSkinLumaOfFace = 0.5;
   int openPx = 5;          // morphological opening of the skin mask (removes speckle, thin strips)
   int closePx = 7;         // closing (joins a hand's pieces)
   int minHandAreaPx = 40;  // smallest skin component kept as a hand candidate
@@ -99,6 +112,9 @@ struct FaceDetection {
   cv::Point2f centre;
   float width = 0;          // pixels
   bool insideZone = false;  // the mask covers most of the face's central part
+  // The mean grey level of the skin in the face's central half (0: none):
+  // the subject's skin under this light, which the hands share.
+  float skinLuma = 0;
 };
 
 struct HandDetection {
@@ -115,6 +131,10 @@ struct HandDetection {
   // agree (within DetectorOptions::stereoAgreeGrey) at their disparity; 1
   // where not measured (full image, no disparity).
   float stereoAgreement = 1;
+  // The mean grey level of its pixels. Skin-coloured cloth is much darker
+  // than skin under the same light (its chroma is skin's only because YCrCb
+  // chroma shrinks with luma): TrackerOptions::minHandLumaOfFace.
+  float meanLuma = 0;
 };
 
 // The body triangle of one person. Left and right are the person's own.

@@ -60,6 +60,12 @@ struct TrackerOptions {
   double smallHandAreaFaces = 0.05;
   double smallHandRadiusFaces = 0.09;
   double smallHandMinAgreement = 0.9;
+  // ... and, once the subject's face skin luma is known, a mean grey level
+  // of at least this fraction of it (0: no limit). Cloth whose chroma is
+  // skin's is far darker than skin under the same light: on tuning seed
+  // 10053 (a brown shirt) the hands' candidates measured 0.6-1.5 of the
+  // face's luma, the shirt's pieces 0.28-0.54 (90 % under 0.54).
+  double minHandLumaOfFace = 0.55;
   // A solid hand candidate: at least this area (squared face widths) and
   // inscribed radius (face widths). A track on a weaker candidate, or on
   // none, moves to a free solid one on its side (0: never).

@@ -13,6 +13,7 @@
 #include "horopter/detection.hpp"
 #include "horopter/error.hpp"
 #include "horopter/synthetic_scene.hpp"
+#include "horopter/tracking_eval.hpp"
 
 namespace horopter {
 namespace {
@@ -203,10 +204,87 @@ TEST(Detection, HandCandidatesCarryStereoAgreementAndRadius) {
   EXPECT_LT(onB->stereoAgreement, 0.5f);
   // The eroded zone (4 px at 200 wide: 1 px) leaves the disc nearly whole.
   EXPECT_NEAR(onA->radiusPx, r, 3);
+  // Its mean grey level is the disc's.
+  cv::Mat grey, disc = cv::Mat::zeros(h, w, CV_8UC1);
+  cv::cvtColor(frame.left, grey, cv::COLOR_BGR2GRAY);
+  cv::circle(disc, a, r - 2, cv::Scalar(255), cv::FILLED);
+  EXPECT_NEAR(onA->meanLuma, cv::mean(grey, disc)[0], 8);
   // Over the full image nothing is measured.
   o.scope = DetectionScope::FullImage;
   for (const HandDetection& c : Detector(o).detect(frame).hands)
     EXPECT_EQ(c.stereoAgreement, 1.0f);
+}
+
+// Tuning seed 10048 (issue 20): a face width per disparity learnt from a
+// false face in the zone, before the person came, kept the real face out of
+// the sizes searched, and the person was never elected. Forgotten after
+// depthSizeForgetSearches empty searches, the face is found. The whole
+// trial's front end, as eval-tracking runs it.
+TEST(Detection, AFaceSizeLearntFromAFalseFaceDoesNotHideTheRealOne) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  const auto framesWithTheFace = [](int forgetAfter) {
+    TrialOptions trial;
+    trial.seed = 10048;
+    trial.frames = 110;  // the person is inside the zone from about frame 86
+    trial.detector.depthSizeForgetSearches = forgetAfter;
+    int found = 0;
+    runTrackingTrial(trial, DetectionScope::HoropterRegion, {}, [&](const TrialFrame& t) {
+      for (const FaceDetection& f : t.frame.detections->faces)
+        if (f.insideZone &&
+            near(f.centre, t.truth.people[0].head2d, 0.5 * t.truth.people[0].faceWidthPx))
+          ++found;
+    });
+    return found;
+  };
+  EXPECT_LE(framesWithTheFace(1000000), 2);  // a frame here and there
+  EXPECT_GT(framesWithTheFace(DetectorOptions{}.depthSizeForgetSearches), 10);
+}
+
+// A face width per disparity learnt wrong (here: the disparities made four times larger
+// after it was learnt) bounds the sizes away from the real face; after
+// depthSizeForgetSearches empty searches it is forgotten and the face found.
+TEST(Detection, AWrongFaceSizeFromDepthIsForgotten) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  const auto framesToFindAgain = [](int forgetAfter) {
+    DetectorOptions o;
+    o.depthSizeForgetSearches = forgetAfter;
+    Detector detector(o);
+    for (int index = 100; index < 104; ++index) {  // k learnt from the truth
+      Frame frame = renderedFrame(index);
+      frame.disparity = std::any_cast<const synth::FrameTruth&>(frame.truth).disparity;
+      EXPECT_EQ(detector.detect(frame).faces.size(), 1u) << index;
+    }
+    for (int k = 1; k <= 14; ++k) {
+      Frame frame = renderedFrame(104 + k);
+      frame.disparity = std::any_cast<const synth::FrameTruth&>(frame.truth).disparity * 4;
+      if (!detector.detect(frame).faces.empty()) return k;
+    }
+    return 0;  // never
+  };
+  const int forgetting = framesToFindAgain(10);
+  EXPECT_GE(forgetting, 10);  // the larger disparities did keep the face out
+  EXPECT_LE(forgetting, 11);
+  EXPECT_EQ(framesToFindAgain(1000), 0);
+}
+
+// Skin-coloured cloth is far darker than skin under the same light: with the
+// face's skin luma known, skin darker than a fraction of it is no hand.
+TEST(Detection, SkinDarkerThanTheFaceIsNotAHand) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  const Frame frame = renderedFrame(100);
+  DetectorOptions o;
+  o.minSkinLumaOfFace = 0;
+  const Detections all = Detector(o).detect(frame);
+  ASSERT_EQ(all.faces.size(), 1u);
+  EXPECT_GT(all.faces[0].skinLuma, 40.f);
+  ASSERT_FALSE(all.hands.empty());
+  for (const HandDetection& h : all.hands)
+    EXPECT_GT(h.meanLuma, 0.f);
+  o.minSkinLumaOfFace = 3;  // brighter than any skin under this light
+  EXPECT_TRUE(Detector(o).detect(frame).hands.empty());
 }
 
 TEST(Detection, BadInputIsAnError) {

@@ -269,6 +269,35 @@ TEST(TrackerPasses, ThePlausibilityFilterRejectsEachLimitInTurn) {
   EXPECT_EQ(c[1], &dets[2]);
 }
 
+TEST(TrackerPasses, CandidatesMuchDarkerThanTheFaceAreNotHands) {
+  TrackerOptions o;
+  const auto kept = [&](float luma, float faceLuma) {
+    HandDetection c = cand({420, 380});
+    c.meanLuma = luma;
+    return plausibleHandCandidates({c}, kHead, kFw, o, faceLuma).size() == 1;
+  };
+  EXPECT_TRUE(kept(60, 0));     // the face's luma unknown: no limit
+  EXPECT_FALSE(kept(60, 150));  // cloth: 0.4 of the face
+  EXPECT_FALSE(kept(82, 150));  // just under 0.55
+  EXPECT_TRUE(kept(83, 150));
+  o.minHandLumaOfFace = 0;
+  EXPECT_TRUE(kept(10, 150));
+  // The head's association keeps the subject's face luma.
+  SubjectTracks s;
+  Detections det;
+  FaceDetection face;
+  face.centre = kHead;
+  face.width = kFw;
+  face.insideZone = true;
+  face.skinLuma = 140;
+  det.faces.push_back(face);
+  associateHead(s, det, 0.0, o);
+  EXPECT_EQ(s.faceLuma, 140.f);
+  det.faces[0].skinLuma = 0;  // no skin measured this time: the last is kept
+  associateHead(s, det, 0.1, o);
+  EXPECT_EQ(s.faceLuma, 140.f);
+}
+
 TEST(TrackerPasses, GatedAssignmentIsNearestFirstOneCandidatePerTrack) {
   const TrackerOptions o;
   const double t = 1.0 / 30;
