@@ -82,6 +82,9 @@ const char* kEvalTrackingHelp =
     "                     of its central half (default 0.3)\n"
     "  --min-skin-luma F  hand skin darker than F times the face's skin is not skin\n"
     "                     (default 0.5; 0: off)\n"
+    "  --pinned-disparity F  a hand candidate whose mean disparity is at least F of the\n"
+    "                     largest is no hand: a match pinned at the range's end (default\n"
+    "                     0.94; 0: no limit)\n"
     "  --min-hand-luma F  a hand candidate's mean grey level must be at least F times the\n"
     "                     face's skin (default 0.55; 0: no limit): skin-coloured cloth is darker\n"
     "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
@@ -224,6 +227,8 @@ int runEvalTracking(Args& args) {
   base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
   base.detector.minSkinLumaOfFace =
       args.doubleValue("--min-skin-luma", base.detector.minSkinLumaOfFace);
+  base.tracker.pinnedDisparityFraction =
+      args.doubleValue("--pinned-disparity", base.tracker.pinnedDisparityFraction);
   base.tracker.minHandLumaOfFace =
       args.doubleValue("--min-hand-luma", base.tracker.minHandLumaOfFace);
   base.tracker.blindFollowS = args.doubleValue("--blind-follow-s", base.tracker.blindFollowS);

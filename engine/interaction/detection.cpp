@@ -144,6 +144,7 @@ Detections Detector::detect(const Frame& frame) {
                       frame.leftGrey.type() == CV_8UC1 && frame.rightGrey.type() == CV_8UC1;
   std::vector<int> agree(static_cast<std::size_t>(n), 0), measured(static_cast<std::size_t>(n), 0);
   std::vector<std::int64_t> lumaSum(static_cast<std::size_t>(n), 0);
+  std::vector<std::int64_t> disparitySum(static_cast<std::size_t>(n), 0);
   for (int y = 0; y < m.skin.rows; ++y) {
     const auto* l = m.labels.ptr<int>(y);
     const auto* dist = m.distance.ptr<float>(y);
@@ -156,6 +157,7 @@ Detections Detector::detect(const Frame& frame) {
       radius[l[x]] = std::max(radius[l[x]], dist[x]);
       lumaSum[l[x]] += grey[x];
       if (!stereo || disp[x + roi.x] <= 0) continue;
+      disparitySum[l[x]] += disp[x + roi.x];
       const int xr = x + roi.x - (disp[x + roi.x] + 8) / 16;
       if (xr < 0) continue;
       ++measured[l[x]];
@@ -170,9 +172,12 @@ Detections Detector::detect(const Frame& frame) {
     h.radiusPx = radius[static_cast<std::size_t>(i)];
     h.meanLuma =
         static_cast<float>(lumaSum[static_cast<std::size_t>(i)]) / static_cast<float>(area);
-    if (measured[static_cast<std::size_t>(i)] > 0)
+    if (measured[static_cast<std::size_t>(i)] > 0) {
       h.stereoAgreement = static_cast<float>(agree[static_cast<std::size_t>(i)]) /
                           measured[static_cast<std::size_t>(i)];
+      h.disparityPx = static_cast<float>(disparitySum[static_cast<std::size_t>(i)]) /
+                      (16.0f * static_cast<float>(measured[static_cast<std::size_t>(i)]));
+    }
     h.box = cv::Rect(m.stats.at<int>(i, cv::CC_STAT_LEFT) + roi.x,
                      m.stats.at<int>(i, cv::CC_STAT_TOP) + roi.y,
                      m.stats.at<int>(i, cv::CC_STAT_WIDTH), m.stats.at<int>(i, cv::CC_STAT_HEIGHT));

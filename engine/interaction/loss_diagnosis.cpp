@@ -169,16 +169,16 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
                      track[part]->observed ? "" : " coasting");
       else
         std::fprintf(log, " none");
-      std::fprintf(log, " head (%.0f, %.0f) fw %.0f", f.body.head.image.x, f.body.head.image.y,
-                   main.faceWidthPx);
+      std::fprintf(log, " head (%.0f, %.0f) z %.2f fw %.0f", f.body.head.image.x,
+                   f.body.head.image.y, f.body.head.rig.z, main.faceWidthPx);
       if (f.detections)
         for (const FaceDetection& face : f.detections->faces)
           std::fprintf(log, " face-luma %.0f", face.skinLuma);
       std::fprintf(log, " | hands");
       if (f.detections)
         for (const HandDetection& d : f.detections->hands)
-          std::fprintf(log, " (%.0f, %.0f a%d r%.0f s%.2f y%.0f)", d.centroid.x, d.centroid.y,
-                       d.areaPx, d.radiusPx, d.stereoAgreement, d.meanLuma);
+          std::fprintf(log, " (%.0f, %.0f a%d r%.0f s%.2f y%.0f d%.1f)", d.centroid.x, d.centroid.y,
+                       d.areaPx, d.radiusPx, d.stereoAgreement, d.meanLuma, d.disparityPx);
       std::fprintf(log, " | truth L (%.0f, %.0f) R (%.0f, %.0f)\n", main.leftHand2d.x,
                    main.leftHand2d.y, main.rightHand2d.x, main.rightHand2d.y);
     }

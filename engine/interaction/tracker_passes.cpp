@@ -148,9 +148,13 @@ std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<Hand
     // A small candidate needs more agreement between the views.
     const bool small =
         c.areaPx < o.smallHandAreaFaces * fw * fw || c.radiusPx < o.smallHandRadiusFaces * fw;
+    // A match pinned against the end of the search range is a false one
+    // (or a hand nearer than the range, which blind following takes).
+    const bool pinned = o.pinnedDisparityFraction > 0 && o.maxDisparityPx > 0 &&
+                        c.disparityPx >= o.pinnedDisparityFraction * o.maxDisparityPx;
     // Skin-coloured cloth is far darker than the face's skin under the same light.
     const bool bright = !(faceLuma > 0) || c.meanLuma >= o.minHandLumaOfFace * faceLuma;
-    if (inReach && handSized && bright &&
+    if (inReach && handSized && bright && !pinned &&
         c.stereoAgreement >= (small ? o.smallHandMinAgreement : o.minStereoAgreement))
       candidates.push_back(&c);
   }

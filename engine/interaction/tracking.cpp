@@ -68,6 +68,8 @@ void validate(const TrackerOptions& o) {
       !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
       !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
     throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
+  if (!(o.pinnedDisparityFraction >= 0 && o.pinnedDisparityFraction <= 1))
+    throw Error("tracker pinnedDisparityFraction must be in [0, 1] (0: no limit)");
   if (!(o.minHandLumaOfFace >= 0 && o.minHandLumaOfFace <= 4))
     throw Error(
         "tracker minHandLumaOfFace (a hand's grey level over the face's) must be in [0, 4]");

@@ -135,6 +135,8 @@ struct HandDetection {
   // than skin under the same light (its chroma is skin's only because YCrCb
   // chroma shrinks with luma): TrackerOptions::minHandLumaOfFace.
   float meanLuma = 0;
+  // Region: the mean of its valid disparities, px (0: none measured).
+  float disparityPx = 0;
 };
 
 // The body triangle of one person. Left and right are the person's own.

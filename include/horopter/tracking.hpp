@@ -94,6 +94,14 @@ struct TrackerOptions {
   double blindMinScore = 0.7;
   // The front end's largest disparity, px (0: unknown, no near blindness).
   double maxDisparityPx = 0;
+  // A candidate whose mean disparity is at least this fraction of
+  // maxDisparityPx is no hand (0: no limit). Skin-coloured wood behind a
+  // person's shoulder, matched against the end of the search range (93 of
+  // 95 px), held the right hand's track for whole trials (tuning seeds
+  // 10003, 10004, 10042: 302 such candidates at 90 px or more, none of the
+  // hands'); a hand that near is blind to the front end anyway and
+  // followed by its look.
+  double pinnedDisparityFraction = 0.94;
   // A hand's track takes no candidate further than this many face widths
   // across the head's vertical to the other hand's side (a circle or a
   // wave crosses the midline by about half a face width).

@@ -298,6 +298,26 @@ TEST(TrackerPasses, CandidatesMuchDarkerThanTheFaceAreNotHands) {
   EXPECT_EQ(s.faceLuma, 140.f);
 }
 
+TEST(TrackerPasses, CandidatesPinnedAtTheRangesEndAreNotHands) {
+  TrackerOptions o;
+  o.maxDisparityPx = 95;
+  const auto kept = [&](float disparity) {
+    HandDetection c = cand({420, 380});
+    c.disparityPx = disparity;
+    return plausibleHandCandidates({c}, kHead, kFw, o).size() == 1;
+  };
+  EXPECT_TRUE(kept(0));  // nothing measured
+  EXPECT_TRUE(kept(84));
+  EXPECT_TRUE(kept(89.2f));
+  EXPECT_FALSE(kept(89.4f));  // 0.94 of 95 = 89.3
+  EXPECT_FALSE(kept(93));
+  o.pinnedDisparityFraction = 0;
+  EXPECT_TRUE(kept(93));
+  o.pinnedDisparityFraction = 0.94;
+  o.maxDisparityPx = 0;  // the range unknown
+  EXPECT_TRUE(kept(93));
+}
+
 TEST(TrackerPasses, GatedAssignmentIsNearestFirstOneCandidatePerTrack) {
   const TrackerOptions o;
   const double t = 1.0 / 30;
