@@ -331,15 +331,16 @@ int runEvalTracking(Args& args) {
 
   const bool better = scores.size() == 2 && scores[0].trackerLoss() < scores[1].trackerLoss();
   if (json) {
-    std::printf(
-        "{\"trials\":%d,\"seed\":%lld,\"seed_use\":\"%s\",\"frames\":%d,\"width\":%d,"
-        "\"height\":%d,\"scopes\":[",
-        trials, seed, eval::seedUseName(seedUse), base.frames, base.width, base.height);
+    std::ostringstream out;
+    out << "{\"trials\":" << trials << ",\"seed\":" << seed << ",\"seed_use\":\""
+        << eval::seedUseName(seedUse) << "\",\"frames\":" << base.frames
+        << ",\"width\":" << base.width << ",\"height\":" << base.height << ",\"scopes\":[";
     for (std::size_t k = 0; k < scores.size(); ++k)
-      std::printf("%s%s", k ? "," : "", scoreJson(scores[k], perTrial[k]).c_str());
-    std::printf("]");
-    if (scores.size() == 2) std::printf(",\"region_better\":%s", better ? "true" : "false");
-    std::printf("}\n");
+      out << (k ? "," : "") << scoreJson(scores[k], perTrial[k]);
+    out << "]";
+    if (scores.size() == 2) out << ",\"region_better\":" << (better ? "true" : "false");
+    out << "}";
+    writeJsonLine(out.str());
   } else {
     std::printf("%d trials (seeds %lld-%lld, %s), %d frames each at %dx%d, head control %s\n",
                 trials, seed, seed + trials - 1, eval::seedUseName(seedUse), base.frames,
