@@ -79,3 +79,21 @@ def test_seed_ranges_are_enforced():
         horopter.seed_use(499990, 20)
     with pytest.raises(horopter.Error, match="trained and tuned the movement model"):
         horopter.seed_use(1000000, 1)
+
+
+def test_ledger_blocks_are_disjoint_evaluation_seeds():
+    """docs/evaluation.md's ledger: every block lies in the evaluation range, none overlaps."""
+    import re
+
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "..", "docs", "evaluation.md")
+    ledger = open(path, encoding="utf-8").read().split("## Ledger of evaluation blocks")[1]
+    blocks = []
+    for row in re.findall(r"^\| ([\d ]+) - ([\d ]+) \|", ledger, flags=re.M):
+        first, last = (int(v.replace(" ", "")) for v in row)
+        assert first <= last
+        assert horopter.seed_use(first, last - first + 1) == "evaluation"
+        blocks.append((first, last))
+    assert blocks, "the ledger lists no block"
+    blocks.sort()
+    for (_, last), (first, _) in zip(blocks, blocks[1:]):
+        assert last < first, f"ledger blocks overlap at {first}"
