@@ -104,7 +104,14 @@ Detections Detector::detect(const Frame& frame) {
   const bool haveDisparity = region && !frame.disparity.empty() &&
                              frame.disparity.type() == CV_16SC1 &&
                              frame.disparity.size() == frame.left.size();
-  cv::cvtColor(colour(roi), m.grey, cv::COLOR_BGR2GRAY);
+  // The grey levels over the region: the rectify stage's grey view where
+  // there is one (the same conversion, done once per frame).
+  if (frame.leftGrey.size() == frame.left.size() && frame.leftGrey.type() == CV_8UC1)
+    m.grey = frame.leftGrey(roi);
+  else {
+    m.grey.release();  // it may still view an earlier frame's grey image: not into that
+    cv::cvtColor(colour(roi), m.grey, cv::COLOR_BGR2GRAY);
+  }
   for (FaceDetection& f : d.faces) {
     const cv::Rect centre =
         cv::Rect(f.box.x + f.box.width / 4 - roi.x, f.box.y + f.box.height / 4 - roi.y,
