@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "hand_candidate.hpp"
 #include "horopter/error.hpp"
 #include "horopter/head_control.hpp"
 #include "horopter/tracking.hpp"
@@ -20,17 +21,8 @@ namespace {
 constexpr float kFace = 60;  // face width, px
 const cv::Point2f kHead(320, 120);
 
-// A candidate; areaPx 0: the disc's area.
 HandDetection hand(cv::Point2f at, float radiusPx = 12, float agreement = 1, int areaPx = 0) {
-  HandDetection h;
-  h.centroid = at;
-  h.areaPx = areaPx > 0 ? areaPx : static_cast<int>(3.14f * radiusPx * radiusPx);
-  h.box = cv::Rect(cvRound(at.x - radiusPx), cvRound(at.y - radiusPx), cvRound(2 * radiusPx),
-                   cvRound(2 * radiusPx));
-  h.radiusPx = radiusPx;
-  h.stereoAgreement = agreement;
-  h.insideZone = true;
-  return h;
+  return testing::handCandidate(at, radiusPx, agreement, areaPx);
 }
 
 Frame frameWith(std::int64_t index, std::vector<HandDetection> hands) {

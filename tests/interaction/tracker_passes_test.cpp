@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "hand_candidate.hpp"
 #include "horopter/tracking.hpp"
 #include "interaction/tracker_passes.hpp"
 
@@ -18,15 +19,8 @@ namespace {
 constexpr double kFw = 60;  // face width, px
 const cv::Point2f kHead(320, 120);
 
-// A candidate; areaPx 0: the disc's area.
 HandDetection cand(cv::Point2f at, float radiusPx = 12, float agreement = 1, int areaPx = 0) {
-  HandDetection h;
-  h.centroid = at;
-  h.areaPx = areaPx > 0 ? areaPx : static_cast<int>(3.14f * radiusPx * radiusPx);
-  h.radiusPx = radiusPx;
-  h.stereoAgreement = agreement;
-  h.insideZone = true;
-  return h;
+  return testing::handCandidate(at, radiusPx, agreement, areaPx);
 }
 
 // A hand frame at time t over all of `dets` (they must outlive it).
