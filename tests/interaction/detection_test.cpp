@@ -297,6 +297,8 @@ TEST(Detection, BadInputIsAnError) {
       [](DetectorOptions& o) { o.exhaustiveSearchEvery = -1; },
       [](DetectorOptions& o) { o.acquisitionFaceScale = 2; },
       [](DetectorOptions& o) { o.faceZoneCover = 1.5; },
+      [](DetectorOptions& o) { o.minSkinLumaOfFace = -0.1; },
+      [](DetectorOptions& o) { o.depthSizeForgetSearches = 0; },
   };
   for (std::size_t i = 0; i < spoilers.size(); ++i) {
     DetectorOptions o;

@@ -4,6 +4,8 @@
 // and the head follows its skin blob when the face is missed.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -305,6 +307,8 @@ TEST(HandTracking, BadOptionsAreErrors) {
       [](TrackerOptions& o) { o.blindPatchFaces = 0; },
       [](TrackerOptions& o) { o.blindMinScore = 2; },
       [](TrackerOptions& o) { o.maxDisparityPx = -1; },
+      [](TrackerOptions& o) { o.minHandLumaOfFace = std::nan(""); },
+      [](TrackerOptions& o) { o.pinnedDisparityFraction = 1.5; },
   };
   for (std::size_t i = 0; i < spoilers.size(); ++i) {
     TrackerOptions o;
