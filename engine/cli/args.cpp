@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "horopter/error.hpp"
+#include "horopter/option_table.hpp"
 
 namespace horopter::cli {
 
@@ -40,34 +41,19 @@ std::optional<std::string> Args::value(const std::string& name) {
   return std::nullopt;
 }
 
-int Args::intValue(const std::string& name, int fallback) {
+int Args::intValue(const std::string& name, int fallback, int min, int max) {
   const auto v = value(name);
-  if (!v) return fallback;
-  try {
-    std::size_t used = 0;
-    const long n = std::stol(*v, &used);
-    if (used != v->size() || n < -1000000000L || n > 1000000000L) throw std::invalid_argument("");
-    return static_cast<int>(n);
-  } catch (const std::exception&) {
-    throw Error(name + " needs an integer, got '" + *v + "'");
-  }
+  return v ? static_cast<int>(parseInteger(*v, name, min, max)) : fallback;
 }
 
-double Args::doubleValue(const std::string& name, double fallback) {
-  return optionalDouble(name).value_or(fallback);
+double Args::doubleValue(const std::string& name, double fallback, double min, double max) {
+  return optionalDouble(name, min, max).value_or(fallback);
 }
 
-std::optional<double> Args::optionalDouble(const std::string& name) {
+std::optional<double> Args::optionalDouble(const std::string& name, double min, double max) {
   const auto v = value(name);
   if (!v) return std::nullopt;
-  try {
-    std::size_t used = 0;
-    const double d = std::stod(*v, &used);
-    if (used != v->size()) throw std::invalid_argument("");
-    return d;
-  } catch (const std::exception&) {
-    throw Error(name + " needs a number, got '" + *v + "'");
-  }
+  return parseNumber(*v, name, min, max);
 }
 
 std::string Args::stringValue(const std::string& name, const std::string& fallback) {
@@ -95,61 +81,63 @@ void Args::finish(const std::string& command) const {
 }
 
 StereoParams parseStereoFlags(Args& args, StereoParams p) {
-  p.minDisparity = args.intValue("--min-disparity", p.minDisparity);
-  p.numDisparities = args.intValue("--num-disparities", p.numDisparities);
-  p.blockSize = args.intValue("--block-size", p.blockSize);
+  for (const IntOption<StereoParams>& o : stereoOptions())
+    p.*o.member = args.intValue(o.flag, p.*o.member, o.min, o.max);
   if (auto v = args.value("--pre-filter-type")) p.preFilterType = parsePreFilterType(*v);
-  p.preFilterCap = args.intValue("--pre-filter-cap", p.preFilterCap);
-  p.textureThreshold = args.intValue("--texture-threshold", p.textureThreshold);
-  p.uniquenessRatio = args.intValue("--uniqueness-ratio", p.uniquenessRatio);
-  p.disp12MaxDiff = args.intValue("--disp12-max-diff", p.disp12MaxDiff);
-  p.speckleWindowSize = args.intValue("--speckle-window-size", p.speckleWindowSize);
-  p.speckleRange = args.intValue("--speckle-range", p.speckleRange);
   validate(p);
   return p;
 }
 
 MedianParams parseMedianFlags(Args& args, MedianParams m) {
-  m.kernelSize = args.intValue("--median-size", m.kernelSize);
-  m.minValidToFill = args.intValue("--median-min-valid", m.minValidToFill);
+  for (const IntOption<MedianParams>& o : medianOptions())
+    m.*o.member = args.intValue(o.flag, m.*o.member, o.min, o.max);
   validate(m);
   return m;
 }
 
+ImageSize parseImageSize(const std::string& text, const std::string& option, ImageSize min,
+                         ImageSize max) {
+  const std::string expected = option + " takes WxH within " + std::to_string(min.width) + "x" +
+                               std::to_string(min.height) + ".." + std::to_string(max.width) + "x" +
+                               std::to_string(max.height) + ", got '" + text + "'";
+  const auto x = text.find('x');
+  if (x == std::string::npos) throw Error(expected);
+  try {
+    return {static_cast<int>(parseInteger(text.substr(0, x), option, min.width, max.width)),
+            static_cast<int>(parseInteger(text.substr(x + 1), option, min.height, max.height))};
+  } catch (const Error&) {
+    throw Error(expected);
+  }
+}
+
 int parseThreads(Args& args, int fallback) {
   if (fallback < 1) fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = args.intValue("--threads", fallback);
-  if (threads < 1 || threads > 256)
-    throw Error("--threads must be within 1..256, got " + std::to_string(threads));
-  return threads;
+  return args.intValue("--threads", fallback, 1, 256);
 }
+
+namespace {
+
+// "  --flag N   help, unit, min..max (default D)", from an option's entry.
+template <class Params>
+void optionHelp(std::ostringstream& o, const IntOption<Params>& option, const Params& defaults) {
+  std::string flag = std::string("  ") + option.flag + " N";
+  flag.resize(std::max<std::size_t>(flag.size() + 2, 27), ' ');
+  o << flag << option.help << "; " << option.min << ".." << option.max
+    << (*option.unit ? std::string(" ") + option.unit : std::string()) << " (default "
+    << defaults.*option.member << ")\n";
+}
+
+}  // namespace
 
 std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
   std::ostringstream o;
-  o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n"
-    << "  --min-disparity N        smallest disparity searched, px (default " << p.minDisparity
-    << ")\n"
-    << "  --num-disparities N      search range, a positive multiple of 16 (default "
-    << p.numDisparities << ")\n"
-    << "  --block-size N           odd matching window side, 3..255 (default " << p.blockSize
-    << ")\n"
-    << "  --pre-filter-type T      xsobel or none (default " << toString(p.preFilterType) << ")\n"
-    << "  --pre-filter-cap N       x-Sobel clip, 1..63 (default " << p.preFilterCap << ")\n"
-    << "  --texture-threshold N    least window texture, 0 = off (default " << p.textureThreshold
-    << ")\n"
-    << "  --uniqueness-ratio N     percent margin of the winner, 0 = off (default "
-    << p.uniquenessRatio << ")\n"
-    << "  --disp12-max-diff N      left-right check tolerance, px; -1 = off (default "
-    << p.disp12MaxDiff << ")\n"
-    << "  --speckle-window-size N  largest blob removed, px; 0 = off (default "
-    << p.speckleWindowSize << ")\n"
-    << "  --speckle-range N        largest step inside a blob, 1/16 px (default " << p.speckleRange
-    << ")\n"
-    << "  --median-size N          hole-filling median: 0 (off), 3 or 5 (default " << m.kernelSize
-    << ")\n"
-    << "  --median-min-valid N     valid neighbours needed to fill a hole; 0 = more than half\n"
-    << "                           the window (default " << m.minValidToFill << ")\n"
-    << "  --threads N              threads for the front end's stripes (default: all "
+  o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n";
+  for (const IntOption<StereoParams>& option : stereoOptions())
+    optionHelp(o, option, p);
+  o << "  --pre-filter-type T      xsobel or none (default " << toString(p.preFilterType) << ")\n";
+  for (const IntOption<MedianParams>& option : medianOptions())
+    optionHelp(o, option, m);
+  o << "  --threads N              threads for the front end's stripes, 1..256 (default: all "
     << std::max(1u, std::thread::hardware_concurrency()) << ")\n";
   return o.str();
 }

@@ -18,9 +18,13 @@ class Args {
   bool flag(const std::string& name);
   // The value after `name` ("--x 3" or "--x=3"), removed; nullopt if absent.
   std::optional<std::string> value(const std::string& name);
-  int intValue(const std::string& name, int fallback);
-  double doubleValue(const std::string& name, double fallback);
-  std::optional<double> optionalDouble(const std::string& name);
+  // Numbers parse strictly (horopter/option_table.hpp): "2junk", "abc", "nan"
+  // and values outside [min, max] are errors naming the flag.
+  int intValue(const std::string& name, int fallback, int min = -1000000000, int max = 1000000000);
+  double doubleValue(const std::string& name, double fallback, double min = -1e300,
+                     double max = 1e300);
+  std::optional<double> optionalDouble(const std::string& name, double min = -1e300,
+                                       double max = 1e300);
   std::string stringValue(const std::string& name, const std::string& fallback);
   // The remaining positional arguments (those not starting with "--"), removed.
   std::vector<std::string> positionals();
@@ -30,6 +34,14 @@ class Args {
  private:
   std::vector<std::string> args_;
 };
+
+// "WxH" with each side within its range; anything else ("640x480junk",
+// "640 x 480", "-1x5") is an error naming `option`.
+struct ImageSize {
+  int width = 0, height = 0;
+};
+ImageSize parseImageSize(const std::string& text, const std::string& option, ImageSize min,
+                         ImageSize max);
 
 // The stereo flags every command shares (kebab-case names of StereoParams).
 StereoParams parseStereoFlags(Args& args, StereoParams defaults);

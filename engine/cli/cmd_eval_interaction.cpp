@@ -159,13 +159,9 @@ int runEvalInteraction(Args& args) {
     throw Error("--threads must be within 1..256");
   if (options.jobs < 1 || options.jobs > 64) throw Error("--jobs must be within 1..64");
   {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 64 ||
-        h < 48 || w > 4096 || h > 4096)
-      throw Error("--size takes WxH within 64x48..4096x4096, got '" + size + "'");
-    options.trial.width = w;
-    options.trial.height = h;
+    const ImageSize wh = parseImageSize(size, "--size", {64, 48}, {4096, 4096});
+    options.trial.width = wh.width;
+    options.trial.height = wh.height;
   }
   if (scopeName != "both" && scopeName != "region" && scopeName != "full")
     throw Error("--scope takes region, full or both, got '" + scopeName + "'");

@@ -115,12 +115,6 @@ const char* kEvalTrackingHelp =
     "                     fraction), worst_trials and per_trial\n"
     "  -v, --verbose      one line per trial on stderr\n";
 
-void parseSize(const std::string& text, int& width, int& height) {
-  if (std::sscanf(text.c_str(), "%dx%d", &width, &height) != 2 || width < 64 || height < 64 ||
-      width > 4096 || height > 4096)
-    throw Error("--size must be WxH with both between 64 and 4096, got '" + text + "'");
-}
-
 struct TrackingTrial {
   TrialResult result;
   LossDiagnosis causes;
@@ -204,7 +198,11 @@ int runEvalTracking(Args& args) {
   const int jobs = args.intValue("--jobs", 1);
   const long long seed = std::stoll(args.stringValue("--seed", "1000"));
   base.frames = args.intValue("--frames", 300);
-  if (auto size = args.value("--size")) parseSize(*size, base.width, base.height);
+  if (auto size = args.value("--size")) {
+    const ImageSize wh = parseImageSize(*size, "--size", {64, 64}, {4096, 4096});
+    base.width = wh.width;
+    base.height = wh.height;
+  }
   const std::string scope = args.stringValue("--scope", "both");
   base.threads = args.intValue("--threads", 1);
   base.backend = args.stringValue("--backend", "auto");

@@ -208,13 +208,8 @@ void printJson(const std::vector<BackendProfile>& profiles, const std::string& i
 }
 
 cv::Size parseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w < 16 || h < 16 ||
-      w > 8192 || h > 8192)
-    throw Error("--size needs WxH with both sides 16..8192, got '" + text + "'");
-  return {w, h};
+  const ImageSize wh = parseImageSize(text, "--size", {16, 16}, {8192, 8192});
+  return {wh.width, wh.height};
 }
 
 }  // namespace

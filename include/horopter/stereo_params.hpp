@@ -6,7 +6,10 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+
+#include "horopter/option_table.hpp"
 
 namespace horopter {
 
@@ -68,5 +71,13 @@ struct MedianParams {
 // The fill threshold in effect (resolves the 0 default).
 int effectiveMinValid(const MedianParams& m);
 void validate(const MedianParams& m);
+
+// Every integer option of StereoParams and MedianParams, declared once (unit,
+// range, help, flag), in the order `--help` lists them; preFilterType
+// (--pre-filter-type none|xsobel) is the one choice. validate() checks these
+// ranges, then the rules across options (a multiple of 16, an odd window,
+// disparities that fit int16, a fill count within the window).
+std::span<const IntOption<StereoParams>> stereoOptions();
+std::span<const IntOption<MedianParams>> medianOptions();
 
 }  // namespace horopter

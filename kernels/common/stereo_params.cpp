@@ -17,12 +17,51 @@ std::string got(int v) {
   return ", got " + std::to_string(v);
 }
 
+// The ranges; rules across options are in validate().
+const IntOption<StereoParams> kStereoOptions[] = {
+    {"minDisparity", "--min-disparity", "px", -2047, 2047, "smallest disparity searched",
+     &StereoParams::minDisparity},
+    {"numDisparities", "--num-disparities", "px", 16, 1024, "search range, a multiple of 16",
+     &StereoParams::numDisparities},
+    {"blockSize", "--block-size", "px", 3, 255, "odd side of the matching window",
+     &StereoParams::blockSize},
+    {"preFilterCap", "--pre-filter-cap", "", 1, 63, "x-Sobel clip", &StereoParams::preFilterCap},
+    {"textureThreshold", "--texture-threshold", "", 0, 1 << 28,
+     "least texture in the window; 0: off", &StereoParams::textureThreshold},
+    {"uniquenessRatio", "--uniqueness-ratio", "%", 0, 1000,
+     "margin by which the winner beats the rest; 0: off", &StereoParams::uniquenessRatio},
+    {"disp12MaxDiff", "--disp12-max-diff", "px", -1, 2047, "left-right check tolerance; -1: off",
+     &StereoParams::disp12MaxDiff},
+    {"speckleWindowSize", "--speckle-window-size", "px", 0, 1 << 28, "largest blob removed; 0: off",
+     &StereoParams::speckleWindowSize},
+    {"speckleRange", "--speckle-range", "1/16 px", 0, 2047 * kDisparityScale,
+     "largest step between neighbours of one blob", &StereoParams::speckleRange},
+};
+
+const IntOption<MedianParams> kMedianOptions[] = {
+    {"kernelSize", "--median-size", "px", 0, 5, "hole-filling median: 0 (off), 3 or 5",
+     &MedianParams::kernelSize},
+    {"minValidToFill", "--median-min-valid", "", 0, 25,
+     "valid neighbours needed to fill a hole; 0: more than half the window",
+     &MedianParams::minValidToFill},
+};
+
 }  // namespace
 
+std::span<const IntOption<StereoParams>> stereoOptions() {
+  return kStereoOptions;
+}
+
+std::span<const IntOption<MedianParams>> medianOptions() {
+  return kMedianOptions;
+}
+
 void validate(const StereoParams& p) {
-  require(p.numDisparities > 0 && p.numDisparities % 16 == 0,
+  require(p.blockSize % 2 == 1, "blockSize must be odd (3..255)" + got(p.blockSize));
+  for (const IntOption<StereoParams>& o : kStereoOptions)
+    checkRange(o, p);
+  require(p.numDisparities % 16 == 0,
           "numDisparities must be a positive multiple of 16" + got(p.numDisparities));
-  require(p.numDisparities <= 1024, "numDisparities must be at most 1024" + got(p.numDisparities));
   // Every output, the invalid marker included, must fit int16 in 1/16 px.
   const long lowest = (static_cast<long>(p.minDisparity) - 1) * kDisparityScale;
   const long highest = (static_cast<long>(p.minDisparity) + p.numDisparities) * kDisparityScale;
@@ -31,19 +70,8 @@ void validate(const StereoParams& p) {
           "minDisparity + numDisparities must stay within -2047..2047 pixels so that 16 * "
           "disparity fits int16" +
               got(p.minDisparity));
-  require(p.blockSize % 2 == 1 && p.blockSize >= 3 && p.blockSize <= 255,
-          "blockSize must be odd and within 3..255" + got(p.blockSize));
   require(p.preFilterType == PreFilterType::None || p.preFilterType == PreFilterType::XSobel,
           "preFilterType must be None or XSobel");
-  require(p.preFilterCap >= 1 && p.preFilterCap <= 63,
-          "preFilterCap must be within 1..63" + got(p.preFilterCap));
-  require(p.textureThreshold >= 0,
-          "textureThreshold must be >= 0 (0 = off)" + got(p.textureThreshold));
-  require(p.uniquenessRatio >= 0 && p.uniquenessRatio <= 1000,
-          "uniquenessRatio must be within 0..1000 percent (0 = off)" + got(p.uniquenessRatio));
-  require(p.speckleWindowSize >= 0,
-          "speckleWindowSize must be >= 0 (0 = off)" + got(p.speckleWindowSize));
-  require(p.speckleRange >= 0, "speckleRange must be >= 0 (1/16 px)" + got(p.speckleRange));
 }
 
 const char* toString(PreFilterType t) {
@@ -63,8 +91,10 @@ int effectiveMinValid(const MedianParams& m) {
 
 void validate(const MedianParams& m) {
   require(m.kernelSize == 0 || m.kernelSize == 3 || m.kernelSize == 5,
-          "median kernel size must be 0 (off), 3 or 5" + got(m.kernelSize));
-  require(m.minValidToFill >= 0 && m.minValidToFill <= m.kernelSize * m.kernelSize,
+          "median kernel size (kernelSize) must be 0 (off), 3 or 5" + got(m.kernelSize));
+  for (const IntOption<MedianParams>& o : kMedianOptions)
+    checkRange(o, m);
+  require(m.minValidToFill <= m.kernelSize * m.kernelSize,
           "median minValidToFill must be within 0..kernelSize^2 (0 = more than half)" +
               got(m.minValidToFill));
 }

@@ -80,29 +80,50 @@ void bindStereo(py::module_& m) {
       .value("NONE", PreFilterType::None, "raw intensities")
       .value("XSOBEL", PreFilterType::XSobel, "clipped horizontal Sobel (PREFILTER_XSOBEL)");
 
-  py::class_<StereoParams>(m, "StereoParams",
-                           "cv::StereoBM's parameters, with its names; disparities are int16 in "
-                           "1/16 px, invalid = (minDisparity - 1) * 16")
+  py::class_<StereoParams> paramsClass(
+      m, "StereoParams",
+      "cv::StereoBM's parameters, with its names; disparities are int16 in "
+      "1/16 px, invalid = (minDisparity - 1) * 16");
+  paramsClass
       .def(py::init([](const py::kwargs& kwargs) { return stereoParamsFrom(kwargs); }),
            "StereoParams(**kwargs): any of minDisparity, numDisparities, blockSize, "
            "preFilterType ('xsobel', 'none' or PreFilterType), preFilterCap, textureThreshold, "
-           "uniquenessRatio, disp12MaxDiff, speckleWindowSize, speckleRange")
-      .def_readwrite("minDisparity", &StereoParams::minDisparity)
-      .def_readwrite("numDisparities", &StereoParams::numDisparities)
-      .def_readwrite("blockSize", &StereoParams::blockSize)
+           "uniquenessRatio, disp12MaxDiff, speckleWindowSize, speckleRange; each within its "
+           "range (horopter.stereo_options())")
       .def_readwrite("preFilterType", &StereoParams::preFilterType)
-      .def_readwrite("preFilterCap", &StereoParams::preFilterCap)
-      .def_readwrite("textureThreshold", &StereoParams::textureThreshold)
-      .def_readwrite("uniquenessRatio", &StereoParams::uniquenessRatio)
-      .def_readwrite("disp12MaxDiff", &StereoParams::disp12MaxDiff)
-      .def_readwrite("speckleWindowSize", &StereoParams::speckleWindowSize)
-      .def_readwrite("speckleRange", &StereoParams::speckleRange)
       .def(
           "validate", [](const StereoParams& p) { validate(p); },
           "Raises horopter.Error naming the first bad parameter")
       .def_property_readonly("invalidDisparity",
                              [](const StereoParams& p) { return invalidDisparity(p); })
       .def("__repr__", [](const StereoParams& p) { return repr(p); });
+  m.def(
+      "stereo_options",
+      [] {
+        const StereoParams defaults;
+        py::list out;
+        for (const IntOption<StereoParams>& o : stereoOptions()) {
+          py::dict d;
+          d["name"] = o.name;
+          d["flag"] = o.flag;
+          d["unit"] = o.unit;
+          d["min"] = o.min;
+          d["max"] = o.max;
+          d["default"] = defaults.*o.member;
+          d["help"] = o.help;
+          out.append(d);
+        }
+        return out;
+      },
+      "The integer stereo parameters as declared once in the library: name, CLI flag, unit, "
+      "range, default, help");
+  // The integer parameters from their table (horopter/stereo_params.hpp).
+  for (const IntOption<StereoParams>& o : stereoOptions()) {
+    const auto member = o.member;
+    paramsClass.def_property(
+        o.name, [member](const StereoParams& p) { return p.*member; },
+        [member](StereoParams& p, int v) { p.*member = v; });
+  }
 
   py::class_<MedianParams>(m, "MedianParams", "The hole-filling median after matching")
       .def(py::init([](int kernelSize, int minValidToFill) {

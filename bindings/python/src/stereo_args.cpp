@@ -1,29 +1,9 @@
 #include "stereo_args.hpp"
 
-#include <utility>
-#include <vector>
+#include "horopter/error.hpp"
+#include "horopter/option_table.hpp"
 
 namespace horopter::python {
-
-namespace {
-
-using IntField = std::pair<const char*, int StereoParams::*>;
-const std::vector<IntField>& intFields() {
-  static const std::vector<IntField> fields = {
-      {"minDisparity", &StereoParams::minDisparity},
-      {"numDisparities", &StereoParams::numDisparities},
-      {"blockSize", &StereoParams::blockSize},
-      {"preFilterCap", &StereoParams::preFilterCap},
-      {"textureThreshold", &StereoParams::textureThreshold},
-      {"uniquenessRatio", &StereoParams::uniquenessRatio},
-      {"disp12MaxDiff", &StereoParams::disp12MaxDiff},
-      {"speckleWindowSize", &StereoParams::speckleWindowSize},
-      {"speckleRange", &StereoParams::speckleRange},
-  };
-  return fields;
-}
-
-}  // namespace
 
 void applyStereoKwargs(StereoParams& params, const py::kwargs& kwargs) {
   for (const auto& [key, value] : kwargs) {
@@ -36,18 +16,20 @@ void applyStereoKwargs(StereoParams& params, const py::kwargs& kwargs) {
       continue;
     }
     bool found = false;
-    for (const auto& [field, member] : intFields()) {
-      if (name != field) continue;
-      if (!py::isinstance<py::int_>(value))
+    for (const IntOption<StereoParams>& o : stereoOptions()) {
+      if (name != o.name) continue;
+      if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
         throw py::type_error(name + " must be an int, got " +
                              std::string(py::str(py::type::of(value).attr("__name__"))));
-      params.*member = value.cast<int>();
+      const long long v = value.cast<long long>();
+      if (v < o.min || v > o.max) throw Error(rangeMessage(o.name, o.unit, o.min, o.max, v));
+      params.*o.member = static_cast<int>(v);
       found = true;
     }
     if (!found) {
       std::string known = "preFilterType";
-      for (const auto& [field, member] : intFields())
-        known += std::string(", ") + field;
+      for (const IntOption<StereoParams>& o : stereoOptions())
+        known += std::string(", ") + o.name;
       throw py::type_error("unknown stereo parameter '" + name + "': use one of " + known);
     }
   }
@@ -61,8 +43,8 @@ StereoParams stereoParamsFrom(const py::kwargs& kwargs) {
 
 std::string repr(const StereoParams& p) {
   std::string s = "StereoParams(";
-  for (const auto& [field, member] : intFields())
-    s += std::string(field) + "=" + std::to_string(p.*member) + ", ";
+  for (const IntOption<StereoParams>& o : stereoOptions())
+    s += std::string(o.name) + "=" + std::to_string(p.*o.member) + ", ";
   return s + "preFilterType='" + toString(p.preFilterType) + "')";
 }
 
