@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "guarded.hpp"
 #include "horopter/backend.hpp"
 #include "horopter/calibration.hpp"
 #include "horopter/error.hpp"
@@ -19,46 +20,9 @@ struct horopter_matcher {
   horopter::StereoFrontend frontend;
 };
 
+using namespace horopter::c_api;
+
 namespace {
-
-thread_local std::string tLastError;
-
-// An argument the caller got wrong (the library's own horopter::Error is
-// about bad input too), and a file or device that failed.
-struct InvalidArgument : horopter::Error {
-  using horopter::Error::Error;
-};
-struct Failed : horopter::Error {
-  using horopter::Error::Error;
-};
-
-template <typename Fn>
-horopter_status guarded(Fn&& fn) noexcept {
-  try {
-    fn();
-    return HOROPTER_OK;
-  } catch (const Failed& e) {
-    tLastError = e.what();
-    return HOROPTER_ERROR_FAILED;
-  } catch (const horopter::Error& e) {
-    tLastError = e.what();
-    return HOROPTER_ERROR_INVALID_ARGUMENT;
-  } catch (const std::bad_alloc&) {
-    tLastError = "out of memory";
-    return HOROPTER_ERROR_OUT_OF_MEMORY;
-  } catch (const std::exception& e) {
-    tLastError = std::string("internal error: ") + e.what();
-    return HOROPTER_ERROR_INTERNAL;
-  } catch (...) {
-    tLastError = "internal error: unknown exception";
-    return HOROPTER_ERROR_INTERNAL;
-  }
-}
-
-template <typename T>
-void requireNonNull(const T* p, const char* what) {
-  if (!p) throw InvalidArgument(std::string(what) + " is NULL");
-}
 
 // The C caller may store any int in the enum field: read its bytes as an
 // int (loading an out-of-range value as the C++ enum is undefined behaviour).
@@ -123,6 +87,26 @@ void copyTable(const std::vector<std::int16_t>& table, int16_t* out) {
 }
 
 }  // namespace
+
+namespace horopter::c_api {
+
+void paramsOf(const horopter_stereo_params& c, StereoParams& s, MedianParams& m) {
+  s.minDisparity = c.min_disparity;
+  s.numDisparities = c.num_disparities;
+  s.blockSize = c.block_size;
+  s.preFilterType =
+      c.pre_filter_xsobel ? horopter::PreFilterType::XSobel : horopter::PreFilterType::None;
+  s.preFilterCap = c.pre_filter_cap;
+  s.textureThreshold = c.texture_threshold;
+  s.uniquenessRatio = c.uniqueness_ratio;
+  s.disp12MaxDiff = c.disp12_max_diff;
+  s.speckleWindowSize = c.speckle_window_size;
+  s.speckleRange = c.speckle_range;
+  m.kernelSize = c.median_kernel_size;
+  m.minValidToFill = c.median_min_valid;
+}
+
+}  // namespace horopter::c_api
 
 extern "C" {
 
@@ -190,20 +174,8 @@ horopter_status horopter_matcher_create(const horopter_stereo_params* params, co
     requireNonNull(matcher, "matcher (the output handle)");
     *matcher = nullptr;
     horopter::StereoParams s;
-    s.minDisparity = params->min_disparity;
-    s.numDisparities = params->num_disparities;
-    s.blockSize = params->block_size;
-    s.preFilterType =
-        params->pre_filter_xsobel ? horopter::PreFilterType::XSobel : horopter::PreFilterType::None;
-    s.preFilterCap = params->pre_filter_cap;
-    s.textureThreshold = params->texture_threshold;
-    s.uniquenessRatio = params->uniqueness_ratio;
-    s.disp12MaxDiff = params->disp12_max_diff;
-    s.speckleWindowSize = params->speckle_window_size;
-    s.speckleRange = params->speckle_range;
     horopter::MedianParams m;
-    m.kernelSize = params->median_kernel_size;
-    m.minValidToFill = params->median_min_valid;
+    paramsOf(*params, s, m);
     const horopter::Backend& b = horopter::findBackend(backend ? backend : "auto");
     *matcher = new horopter_matcher{horopter::StereoFrontend(s, m, b, threads)};
   });

@@ -15,20 +15,15 @@
 #include <opencv2/videoio.hpp>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "commands.hpp"
-#include "horopter/calibration.hpp"
-#include "horopter/capture.hpp"
-#include "horopter/detection.hpp"
+
 #include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
 #include "horopter/hardware/sim_robot.hpp"
-#include "horopter/head_control.hpp"
-#include "horopter/movement.hpp"
 #include "horopter/movement_training.hpp"
+#include "horopter/option_table.hpp"
+#include "horopter/pipeline_builder.hpp"
 #include "horopter/robot_stage.hpp"
-#include "horopter/tracking.hpp"
-#include "horopter/tracking_eval.hpp"
-#include "horopter/vision_stages.hpp"
 #include "run_annotation.hpp"
 
 namespace horopter::cli {
@@ -104,132 +99,106 @@ const char* kRunHelp =
     "  --display          show the annotated frames in a window (needs a display)\n"
     "  --no-video         do not write run.avi\n\n";
 
+// What `horopter run` does: the pipeline's configuration and the CLI's own
+// choices (output, the model file, the simulated robot).
 struct RunJob {
-  std::string source = "synthetic";
-  CaptureOptions capture;
+  PipelineConfig config;
   bool framesGiven = false;
   int frames = 300;
-  StereoParams stereo;
-  MedianParams median;
-  std::string backend = "auto";
-  int threads = 1;
-  int inFlight = 3;
-  bool live = false, liveGiven = false;
+  bool liveGiven = false;
   std::string until;
   std::string outDir = "out";
   std::string trace;
   bool json = false, display = false, video = true;
-  std::optional<double> fixationDisparity, focalPx;
-  std::string calib;
-  double fixationDistance = 1.5;
-  std::string detect = "region";
-  ElectionOptions election;
-  std::string headFormula = "atan2";
-  bool headControl = true;
   std::string model;
   bool movement = true;
   std::string robot = "none";
 };
 
-void parseSize(const std::string& text, int& width, int& height) {
-  if (std::sscanf(text.c_str(), "%dx%d", &width, &height) != 2 || width < 16 || height < 16 ||
-      width > 16384 || height > 16384)
-    throw Error("--size must be WxH with both between 16 and 16384, got '" + text + "'");
-}
-
 RunJob parseRun(Args& args) {
   RunJob job;
-  job.source = args.stringValue("--source", job.source);
+  PipelineConfig& c = job.config;
+  c.source = args.stringValue("--source", c.source);
   if (auto frames = args.value("--frames")) {
-    job.frames = std::stoi(*frames);
-    if (job.frames < 1) throw Error("--frames must be >= 1, got " + *frames);
+    job.frames = static_cast<int>(parseInteger(*frames, "--frames", 1, 1000000000));
     job.framesGiven = true;
   }
-  job.capture.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
+  c.capture.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
   if (auto size = args.value("--size")) {
-    parseSize(*size, job.capture.width, job.capture.height);
-    job.capture.scene.width = job.capture.width;
-    job.capture.scene.height = job.capture.height;
+    const ImageSize wh = parseImageSize(*size, "--size", {16, 16}, {16384, 16384});
+    c.capture.width = wh.width;
+    c.capture.height = wh.height;
+    c.capture.scene.width = c.capture.width;
+    c.capture.scene.height = c.capture.height;
   }
-  job.capture.fps = args.doubleValue("--fps", 0);
-  job.capture.maxSkewMs = args.doubleValue("--max-skew-ms", job.capture.maxSkewMs);
-  job.stereo = parseStereoFlags(args, job.stereo);
-  job.median = parseMedianFlags(args, job.median);
-  job.backend = args.stringValue("--backend", job.backend);
-  job.inFlight = args.intValue("--in-flight", job.inFlight);
+  c.capture.fps = args.doubleValue("--fps", 0);
+  c.capture.maxSkewMs = args.doubleValue("--max-skew-ms", c.capture.maxSkewMs);
+  c.stereo = parseStereoFlags(args, c.stereo);
+  c.median = parseMedianFlags(args, c.median);
+  c.backend = args.stringValue("--backend", c.backend);
+  c.inFlight = args.intValue("--in-flight", c.inFlight);
   // With frames in flight, capture and the other stages keep a core busy
   // with the neighbouring frames, so the front end's pool takes the other
   // cores (a pool as wide as the machine would share a core with them and
   // wait on its slowest stripe). On 2 cores, `--until mask --in-flight 3`:
   // 184-214 frames/s with one thread against 162-202 with two.
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  job.threads = parseThreads(args, job.inFlight > 1 ? std::max(1, cores - 1) : cores);
-  job.liveGiven = job.live = args.flag("--live");
+  c.threads = parseThreads(args, c.inFlight > 1 ? std::max(1, cores - 1) : cores);
+  job.liveGiven = c.live = args.flag("--live");
   job.until = args.stringValue("--until", "");
-  if (!job.until.empty() && job.until != "rectify" && job.until != "disparity" &&
-      job.until != "mask")
+  if (job.until == "rectify")
+    c.stopAfter = StopAfter::Rectify;
+  else if (job.until == "disparity")
+    c.stopAfter = StopAfter::Disparity;
+  else if (job.until == "mask")
+    c.stopAfter = StopAfter::Mask;
+  else if (!job.until.empty())
     throw Error("--until takes rectify, disparity or mask, got '" + job.until + "'");
   job.outDir = args.stringValue("-o", args.stringValue("--out", job.outDir));
   job.trace = args.stringValue("--trace", "");
   job.json = args.flag("--json");
   job.display = args.flag("--display");
   job.video = !args.flag("--no-video");
-  job.fixationDisparity = args.optionalDouble("--fixation-disparity");
-  job.focalPx = args.optionalDouble("--focal-px");
-  job.calib = args.stringValue("--calib", "");
-  job.fixationDistance = args.doubleValue("--fixation", job.fixationDistance);
-  job.detect = args.stringValue("--detect", job.detect);
-  if (job.detect != "region" && job.detect != "full" && job.detect != "off")
-    throw Error("--detect takes region, full or off, got '" + job.detect + "'");
-  job.election.electS = args.doubleValue("--elect-s", job.election.electS);
-  job.election.releaseS = args.doubleValue("--release-s", job.election.releaseS);
-  job.headFormula = args.stringValue("--head-formula", job.headFormula);
-  if (job.headFormula != "atan2" && job.headFormula != "paper")
-    throw Error("--head-formula takes atan2 or paper, got '" + job.headFormula + "'");
-  job.headControl = !args.flag("--no-head-control");
+  c.zone.fixationDisparityPx = args.optionalDouble("--fixation-disparity");
+  c.zone.focalPx = args.optionalDouble("--focal-px");
+  c.zone.calib = args.stringValue("--calib", "");
+  c.zone.fixationDistanceM = args.doubleValue("--fixation", c.zone.fixationDistanceM);
+  const std::string detect = args.stringValue("--detect", "region");
+  if (detect == "region")
+    c.detection = DetectionScope::HoropterRegion;
+  else if (detect == "full")
+    c.detection = DetectionScope::FullImage;
+  else if (detect == "off")
+    c.detection.reset();
+  else
+    throw Error("--detect takes region, full or off, got '" + detect + "'");
+  c.tracker.election.electS = args.doubleValue("--elect-s", c.tracker.election.electS);
+  c.tracker.election.releaseS = args.doubleValue("--release-s", c.tracker.election.releaseS);
+  const std::string formula = args.stringValue("--head-formula", "atan2");
+  if (formula != "atan2" && formula != "paper")
+    throw Error("--head-formula takes atan2 or paper, got '" + formula + "'");
+  c.head.formula = formula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
+  c.headControl = !args.flag("--no-head-control");
   job.model = args.stringValue("--model", "");
   job.movement = !args.flag("--no-movement");
   job.robot = args.stringValue("--robot", job.robot);
   if (job.robot != "none" && job.robot != "sim")
     throw Error("--robot takes none or sim, got '" + job.robot +
                 "' (real robots: horopter head / horopter base)");
-  if (!(job.fixationDistance > 0 && std::isfinite(job.fixationDistance)))
+  if (!(c.zone.fixationDistanceM > 0 && std::isfinite(c.zone.fixationDistanceM)))
     throw Error("--fixation must be a positive distance");
-  for (const auto& v : {job.fixationDisparity, job.focalPx})
+  for (const auto& v : {c.zone.fixationDisparityPx, c.zone.focalPx})
     if (v && !(*v > 0 && std::isfinite(*v)))
       throw Error("--fixation-disparity and --focal-px must be positive numbers");
   args.finish("run");
-  const bool camera = job.source.rfind("camera:", 0) == 0 || job.source.rfind("sbs:", 0) == 0;
-  if (camera && !job.liveGiven) job.live = true;
-  job.capture.frames = job.frames;
-  // With frames in flight the other cores work on the frames ahead, so the
-  // synthetic scene renders on the capture thread alone rather than adding
-  // OpenCV's threads beside the front end's pool (oversubscribed cores).
-  if (job.inFlight > 1) job.capture.scene.threads = 1;
+  const bool camera = c.source.rfind("camera:", 0) == 0 || c.source.rfind("sbs:", 0) == 0;
+  if (camera && !job.liveGiven) c.live = true;
+  c.capture.frames = job.frames;
+  c.maxFrames = job.framesGiven ? job.frames : -1;
   // A run scores nothing against the truth's per-pixel maps (its view shows
   // the head pose and the people's truth only): they are not computed.
-  job.capture.scene.pixelTruth = false;
+  c.capture.scene.pixelTruth = false;
   return job;
-}
-
-// Rectification and thresholds from a calibration file: maps computed once,
-// the zone from the rectified geometry and a fixation straight ahead.
-std::pair<RectifyFunction, ThresholdFunction> calibrated(const RunJob& job) {
-  const StereoCalibration calibration = loadStereoCalibration(job.calib);
-  auto rectifier = std::make_shared<StereoRectifier>(calibration);
-  RectifyFunction rectify = [rectifier](const cv::Mat& l, const cv::Mat& r, cv::Mat& lo,
-                                        cv::Mat& ro) {
-    rectifier->rectify(l, r);
-    lo = rectifier->left().clone();  // the rectifier reuses its buffers
-    ro = rectifier->right().clone();
-  };
-  const RectifiedGeometry g = rectifiedGeometry(calibration);
-  const ViethMuellerCircle circle =
-      viethMuellerCircle(g.baseline, fixationAtDistance(g.baseline, job.fixationDistance));
-  ThresholdFunction thresholds = [g, circle](const Frame&, std::vector<std::int16_t>& out) {
-    horopterThresholds(g, circle, out);
-  };
-  return {rectify, thresholds};
 }
 
 // Annotates, shows and writes each finished frame; draws the progress bar.
@@ -258,7 +227,7 @@ class Output {
     // video, the window, the stills, and the last frame when the length is
     // not known.
     if (job_.until.empty() && (job_.video || job_.display || still || expected_ <= 0)) {
-      const cv::Mat view = annotateFrame(f, job_.stereo, fps);
+      const cv::Mat view = annotateFrame(f, job_.config.stereo, fps);
       if (job_.video) writeVideo(view);
       if (still) {
         writeStill(view, f.index);
@@ -318,8 +287,8 @@ void printSummary(const RunSummary& s, const RunJob& job, const std::string& bac
               static_cast<long long>(s.completed), s.seconds, s.fps(), s.meanLatencyMs,
               s.maxLatencyMs);
   if (s.dropped > 0) std::printf(", %lld stale frames dropped", static_cast<long long>(s.dropped));
-  std::printf("\n%d frame(s) in flight, %s mode, backend %s, %d thread(s)%s\n", job.inFlight,
-              job.live ? "live" : "offline", backendName.c_str(), job.threads,
+  std::printf("\n%d frame(s) in flight, %s mode, backend %s, %d thread(s)%s\n", job.config.inFlight,
+              job.config.live ? "live" : "offline", backendName.c_str(), job.config.threads,
               s.stoppedByRequest ? ", stopped by request" : "");
   std::printf("%-28s %8s %10s\n", "stage", "ms/frame", "frames/s");
   for (const auto& st : s.stages)
@@ -333,89 +302,35 @@ int runPipeline(Args& args) {
     std::cout << kRunHelp << stereoFlagsHelp(StereoParams{}, MedianParams{});
     return 0;
   }
-  const RunJob job = parseRun(args);
+  RunJob job = parseRun(args);
+  PipelineConfig& c = job.config;
   if (job.display && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
     throw Error("--display needs a display (DISPLAY is not set): drop --display, or run under X");
-
-  const Backend& backend = findBackend(job.backend);
-  const bool detect = job.detect != "off" && job.until.empty();
-  // The synthetic scene closed loop: the view turns with the head commands.
-  const bool closedLoop =
-      detect && job.headControl && !job.live && job.calib.empty() && job.source == "synthetic";
-  std::unique_ptr<FrameSource> source;
-  ClosedLoopSyntheticSource* loop = nullptr;
-  if (closedLoop) {
-    auto s = std::make_unique<ClosedLoopSyntheticSource>(job.capture.scene, job.capture.frames);
-    loop = s.get();
-    source = std::move(s);
-  } else {
-    source = openSource(job.source, job.capture);
-  }
-  ThresholdFunction thresholds;
-  RectifyFunction rectify;
-  TrackerOptions tracker;
-  tracker.election = job.election;
-  tracker.captureTime = job.live;
-  tracker.maxDisparityPx = job.stereo.minDisparity + job.stereo.numDisparities - 1;
-  if (!job.calib.empty()) {
-    std::tie(rectify, thresholds) = calibrated(job);
-    tracker.rig = rectifiedGeometry(loadStereoCalibration(job.calib));
-  } else if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get())) {
-    thresholds = syntheticZoneThresholds(synthetic->scene());
-  } else if (loop) {
-    thresholds = syntheticZoneThresholds(loop->scene());
-  } else {
-    thresholds = fixationDisparityThresholds(job.stereo, job.fixationDisparity, job.focalPx);
-  }
-  const synth::SyntheticScene* scene = loop ? &loop->scene() : nullptr;
-  if (auto* synthetic = dynamic_cast<SyntheticSource*>(source.get())) scene = &synthetic->scene();
-  if (scene) {
-    tracker.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
-    tracker.framesPerSecond = scene->options().framesPerSecond;
+  const bool detect = c.detection && job.until.empty();
+  if (job.robot == "sim" && !detect)
+    throw Error("--robot sim needs detection and tracking: drop --detect off / --until");
+  if (detect && job.movement) {
+    if (!job.json)
+      std::cerr << "horopter run: movement model " << (job.model.empty() ? "(default)" : job.model)
+                << "\n";
+    c.movement = loadOrTrainMovementModel(job.model);
   }
 
-  PipelineOptions options;
-  options.mode = job.live ? PipelineMode::Live : PipelineMode::Offline;
-  options.inFlight = job.inFlight;
-  options.maxFrames = job.framesGiven ? job.frames : -1;
-  options.stopRequested = &gInterrupted;
   const std::int64_t expected =
-      job.framesGiven ? job.frames : (job.source == "synthetic" ? job.capture.frames : -1);
+      job.framesGiven ? job.frames : (c.source == "synthetic" ? c.capture.frames : -1);
   Output output(job, expected);
-  options.onFrame = [&output](const Frame& f) { output(f); };
-
-  Pipeline pipeline(options);
-  pipeline.add(makeRectifyStage(rectify));
-  if (job.until != "rectify") {
-    pipeline.add(makeDisparityStage(job.stereo, job.median, backend, job.threads));
-    if (job.until != "disparity") pipeline.add(makeMaskStage(thresholds, job.stereo, backend));
-  }
-  if (detect) {
-    DetectorOptions detector;
-    detector.scope =
-        job.detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
-    pipeline.add(makeDetectionStage(detector));
-    if (loop) tracker.capturePose = syntheticCapturePose();
-    pipeline.add(makeTrackingStage(tracker));
-    if (loop) {
-      HeadControlOptions head;
-      head.formula = job.headFormula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
-      pipeline.add(makeSyntheticHeadControlStage(head, *loop));
-    }
-    if (job.movement) {
-      if (!job.json)
-        std::cerr << "horopter run: movement model "
-                  << (job.model.empty() ? "(default)" : job.model) << "\n";
-      pipeline.add(makeMovementStage(loadOrTrainMovementModel(job.model)));
-    }
-  }
+  std::uint64_t digest = 0;
+  PipelineHooks hooks;
+  hooks.onFrame = [&output, &digest](const Frame& f) {
+    digest = foldDigest(digest, frameDigest(f));
+    output(f);
+  };
+  hooks.stopRequested = &gInterrupted;
   // The simulated robot: commands go through the real drivers; Ctrl-C latches
   // the base's emergency stop at once (the robot stage checks it every frame).
   std::unique_ptr<hw::SimulatedRobot> robot;
   std::unique_ptr<hw::TelemetryLog> telemetry;
   if (job.robot == "sim") {
-    if (!detect)
-      throw Error("--robot sim needs detection and tracking: drop --detect off / --until");
     robot = std::make_unique<hw::SimulatedRobot>();
     std::filesystem::create_directories(job.outDir);
     telemetry = std::make_unique<hw::TelemetryLog>(job.outDir + "/telemetry.jsonl");
@@ -425,17 +340,19 @@ int runPipeline(Args& args) {
     r.telemetrySource = robot.get();
     r.log = telemetry.get();
     r.emergencyStop = &gInterrupted;
-    pipeline.add(makeRobotStage(r));
+    hooks.extraStages.push_back(makeRobotStage(r));
   }
+  AssembledPipeline pipeline = buildPipeline(c, std::move(hooks));
+  const Backend& backend = pipeline.backend();
   if (!job.json)
-    std::cerr << "horopter run: source " << source->name() << ", backend " << backend.name << ", "
-              << job.threads << " thread(s), " << job.inFlight << " frame(s) in flight\n";
+    std::cerr << "horopter run: source " << pipeline.source().name() << ", backend " << backend.name
+              << ", " << c.threads << " thread(s), " << c.inFlight << " frame(s) in flight\n";
 
   gInterrupted = false;
   const auto previous = std::signal(SIGINT, onInterrupt);
   RunSummary summary;
   try {
-    summary = pipeline.run(*source);
+    summary = pipeline.run();
   } catch (...) {
     std::signal(SIGINT, previous);
     throw;
@@ -455,7 +372,13 @@ int runPipeline(Args& args) {
           summary.stoppedByRequest ? "; emergency stop latched" : "");
   }
 
-  const std::string json = summaryJson(summary);
+  // The frames' digest beside the summary: the same configuration gives the
+  // same digest from Python and the C API (tests/app/pipeline_parity_test).
+  nlohmann::ordered_json summaryObject = nlohmann::ordered_json::parse(summaryJson(summary));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digest));
+  summaryObject["frames_digest"] = hex;
+  const std::string json = summaryObject.dump();
   std::ofstream(job.outDir + "/summary.json") << json << "\n";
   if (!job.trace.empty()) writeChromeTrace(summary, job.trace);
   if (job.json)

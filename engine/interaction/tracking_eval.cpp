@@ -8,28 +8,10 @@
 #include "horopter/backend.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
+#include "horopter/pipeline_builder.hpp"
 #include "synthetic/rng.hpp"
 
 namespace horopter {
-
-ThresholdFunction syntheticZoneThresholds(const synth::SyntheticScene& scene) {
-  RectifiedGeometry g;
-  g.focalPx = scene.focalPx();
-  g.cx = scene.cx();
-  g.cy = scene.cy();
-  g.baseline = scene.baselineM();
-  return [g](const Frame& f, std::vector<std::int16_t>& out) {
-    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
-    if (!truth) throw Error("a synthetic frame without its truth");
-    if (!(truth->head.vergence > 1e-9)) {
-      std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front
-      return;
-    }
-    const ViethMuellerCircle circle =
-        viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence));
-    horopterThresholds(g, circle, out);
-  };
-}
 
 synth::SceneOptions trialScene(const TrialOptions& o) {
   synth::SceneOptions s;
@@ -191,37 +173,34 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
                              TrialFrameCallback onFrame) {
   if (o.frames < 1)
     throw Error("a tracking trial needs at least 1 frame, got " + std::to_string(o.frames));
-  const synth::SceneOptions sceneOptions = trialScene(o);
-  std::unique_ptr<FrameSource> source;
-  ClosedLoopSyntheticSource* closedLoop = nullptr;
-  const synth::SyntheticScene* scene = nullptr;
-  if (o.headControl) {
-    auto s = std::make_unique<ClosedLoopSyntheticSource>(
-        sceneOptions, o.frames, o.head.actuationDelayFrames, o.head.limits);
-    closedLoop = s.get();
-    scene = &s->scene();
-    source = std::move(s);
-  } else {
-    auto s = std::make_unique<SyntheticSource>(sceneOptions, o.frames);
-    scene = &s->scene();
-    source = std::move(s);
-  }
+  PipelineConfig c;
+  c.capture.scene = trialScene(o);
+  c.capture.frames = o.frames;
+  c.maxFrames = o.frames;
+  c.inFlight = o.inFlight;
+  c.stereo = o.stereo;
+  c.median = o.median;
+  c.backend = o.backend;
+  c.threads = o.threads;
+  c.detection = scope;
+  c.detector = o.detector;
+  c.tracker = o.tracker;
+  c.headControl = o.headControl;
+  c.head = o.head;
+  c.followHeadTurns = o.followHeadTurns;
 
   TrialResult result;
   result.seed = o.seed;
   result.scope = scope;
-  Scorer scorer(o, scene->focalPx(), scene->baselineM(), result);
-
-  PipelineOptions po;
-  po.mode = PipelineMode::Offline;
-  po.inFlight = o.inFlight;
-  po.maxFrames = o.frames;
-  po.onFrame = [&](const Frame& f) {
+  std::unique_ptr<Scorer> scorer;
+  const synth::SyntheticScene* scene = nullptr;
+  PipelineHooks hooks;
+  hooks.onFrame = [&](const Frame& f) {
     const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
     if (!truth) throw Error("a synthetic frame without its truth");
     bool truthGodfather = false;
     bool partLost[3] = {false, false, false};
-    const bool lost = scorer.score(f, *truth, truthGodfather, partLost);
+    const bool lost = scorer->score(f, *truth, truthGodfather, partLost);
     if (onFrame)
       onFrame(TrialFrame{f,
                          *truth,
@@ -231,25 +210,11 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
                          scene->focalPx(),
                          scene->baselineM()});
   };
-  const Backend& backend = findBackend(o.backend);
-  Pipeline pipeline(po);
-  pipeline.add(makeRectifyStage());
-  pipeline.add(makeDisparityStage(o.stereo, o.median, backend, o.threads));
-  pipeline.add(makeMaskStage(syntheticZoneThresholds(*scene), o.stereo, backend));
-  DetectorOptions detector = o.detector;
-  detector.scope = scope;
-  pipeline.add(makeDetectionStage(detector));
-  TrackerOptions tracker = o.tracker;
-  tracker.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
-  tracker.framesPerSecond = sceneOptions.framesPerSecond;
-  tracker.maxDisparityPx = o.stereo.minDisparity + o.stereo.numDisparities - 1;
-  tracker.captureTime = false;
-  if (closedLoop && o.followHeadTurns) tracker.capturePose = syntheticCapturePose();
-  pipeline.add(makeTrackingStage(tracker));
-  if (closedLoop) pipeline.add(makeSyntheticHeadControlStage(o.head, *closedLoop));
-  for (auto& stage : extraStages)
-    pipeline.add(std::move(stage));
-  result.summary = pipeline.run(*source);
+  hooks.extraStages = std::move(extraStages);
+  AssembledPipeline pipeline = buildPipeline(c, std::move(hooks));
+  scene = pipeline.scene();
+  scorer = std::make_unique<Scorer>(o, scene->focalPx(), scene->baselineM(), result);
+  result.summary = pipeline.run();
   return result;
 }
 

@@ -137,6 +137,62 @@ horopter_status horopter_thresholds_from_disparity(const horopter_geometry* geom
 horopter_status horopter_thresholds_at_distance(const horopter_geometry* geometry, double distance,
                                                 int16_t* out, int width);
 
+/* ---- The whole pipeline (as `horopter run`) ------------------------------ */
+
+/* What to run: the same configuration gives the same frames as `horopter
+ * run` and the Python module's Pipeline (horopter_run_summary.digest equals
+ * their frames_digest / digest). Start from horopter_run_config_default. */
+typedef struct horopter_run_config {
+  const char* source;  /* "synthetic", "dir:PATH", "video:L,R", "camera:L,R", "sbs:DEV" */
+  int frames;          /* > 0: stop after this many; 0: the source's end (synthetic: 300) */
+  int width, height;   /* the synthetic scene's size, px (16..16384) */
+  uint64_t seed;       /* the synthetic scene's seed */
+  const char* backend; /* "auto", "scalar", "avx2", "opencl", ... */
+  int threads;         /* the disparity stage's threads, 1..256 */
+  int in_flight;       /* frames in flight, 1..64 */
+  int live;            /* 1: live mode (capture never waits; stale frames dropped) */
+  const char* detect;  /* "region", "full" or "off" (front end only) */
+  int head_control;    /* 1: on the synthetic scene, the head turns the cameras */
+  horopter_stereo_params stereo;
+} horopter_run_config;
+
+/* source "synthetic", frames 0, 640x480, seed 1, backend "auto", 1 thread,
+ * 3 in flight, offline, detect "region", head control on, stereo defaults
+ * (horopter_stereo_params_default). */
+void horopter_run_config_default(horopter_run_config* config);
+
+/* What the caller sees of each finished frame, in frame order. Positions in
+ * the left rectified image, px; a part's `tracked` is 0 where it has no
+ * track (its position is then meaningless). */
+typedef struct horopter_part {
+  int tracked;
+  float x, y;
+} horopter_part;
+
+typedef struct horopter_frame_result {
+  int64_t index;
+  int godfather; /* 1: a godfather is elected; the parts below are theirs */
+  horopter_part head, left_hand, right_hand;
+  horopter_image disparity; /* S16C1 view, valid during the callback only */
+  horopter_image mask;      /* U8C1 view (255 inside the zone), valid during the callback only */
+} horopter_frame_result;
+
+/* Called on the pipeline's last lane for each finished frame; return 0 to
+ * go on, non-zero to stop capture (the frames in flight still finish). */
+typedef int (*horopter_frame_callback)(const horopter_frame_result* frame, void* user);
+
+typedef struct horopter_run_summary {
+  int64_t frames; /* frames through every stage */
+  double seconds; /* wall time */
+  double fps;
+  uint64_t digest; /* of the frames' outputs, as `horopter run --json`'s frames_digest */
+} horopter_run_summary;
+
+/* Runs the pipeline to the source's end (or `frames`, or a stop from the
+ * callback). on_frame and summary may be NULL. */
+horopter_status horopter_run(const horopter_run_config* config, horopter_frame_callback on_frame,
+                             void* user, horopter_run_summary* summary);
+
 #ifdef __cplusplus
 }
 #endif

@@ -61,10 +61,6 @@ struct TrialOptions {
 // seed, skin-coloured clutter and the distractor.
 synth::SceneOptions trialScene(const TrialOptions& options);
 
-// The zone's thresholds for each frame from the synthetic scene's rig and
-// the vergence in the frame's truth.
-ThresholdFunction syntheticZoneThresholds(const synth::SyntheticScene& scene);
-
 struct PartScore {
   std::int64_t visible = 0;  // godfather frames where the part is visible
   std::int64_t lost = 0;

@@ -171,10 +171,51 @@ static void test_bad_input(void) {
   CHECK(strcmp(horopter_status_name(HOROPTER_ERROR_FAILED), "failed") == 0);
 }
 
+/* Stops the run after `*(int*)user` frames. */
+static int stop_after(const horopter_frame_result* frame, void* user) {
+  const int* limit = (const int*)user;
+  return frame->index + 1 >= *limit;
+}
+
+/* The whole pipeline: frames arrive with their images, a callback can stop
+ * the run, and a bad configuration is a status with a message. */
+static void test_run(void) {
+  horopter_run_config config;
+  horopter_run_config_default(&config);
+  config.width = 160;
+  config.height = 120;
+  config.frames = 30;
+  config.in_flight = 2;
+  int limit = 5;
+  horopter_run_summary summary;
+  CHECK(horopter_run(&config, stop_after, &limit, &summary) == HOROPTER_OK);
+  /* Capture stops; the frame being captured and those in flight still finish. */
+  CHECK(summary.frames >= 5 && summary.frames <= 5 + config.in_flight);
+  CHECK(summary.digest != 0);
+
+  horopter_run_config bad = config;
+  bad.detect = "everywhere";
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "everywhere") != NULL);
+  bad = config;
+  bad.width = 8;
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "width") != NULL);
+  bad = config;
+  bad.in_flight = 0;
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  bad = config;
+  bad.source = "dir:/no/such/folder";
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) != HOROPTER_OK);
+  CHECK(strlen(horopter_last_error()) > 0);
+  CHECK(horopter_run(NULL, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+}
+
 int main(void) {
   test_version_and_backends();
   test_known_shift();
   test_bad_input();
+  test_run();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
 }

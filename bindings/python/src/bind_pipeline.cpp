@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
 #include <exception>
 #include <mutex>
@@ -15,65 +16,24 @@
 
 #include "bindings.hpp"
 #include "frame_dicts.hpp"
-#include "horopter/capture.hpp"
-#include "horopter/detection.hpp"
 #include "horopter/error.hpp"
-#include "horopter/movement.hpp"
 #include "horopter/movement_classifier.hpp"
-#include "horopter/tracking.hpp"
-#include "horopter/vision_stages.hpp"
-#include "pipeline_zone.hpp"
+#include "horopter/pipeline_builder.hpp"
 #include "stereo_args.hpp"
 
 namespace horopter::python {
 
 namespace {
 
-struct RunConfig {
-  std::string source = "synthetic";
-  CaptureOptions capture;
-  std::int64_t maxFrames = -1;
-  StereoParams stereo;
-  MedianParams median;
-  std::string backend = "auto";
-  int threads = 1;
-  int inFlight = 3;
-  bool live = false;
-  ZoneOptions zone;
-  std::string detect;                             // "", "region" or "full"
-  std::shared_ptr<const MovementModel> movement;  // needs detect
-};
-
 class PipelineRun {
  public:
-  explicit PipelineRun(const RunConfig& config)
+  explicit PipelineRun(const PipelineConfig& config)
       : capacity_(static_cast<std::size_t>(config.inFlight)) {
-    const Backend& backend = findBackend(config.backend);
-    source_ = openSource(config.source, config.capture);
-    const ZoneSetup zone = zoneSetup(*source_, config.zone, config.stereo);
-    PipelineOptions options;
-    options.mode = config.live ? PipelineMode::Live : PipelineMode::Offline;
-    options.inFlight = config.inFlight;
-    options.maxFrames = config.maxFrames;
-    options.stopRequested = &stop_;
-    options.onFrame = [this](const Frame& f) { push(f); };
-    pipeline_ = std::make_unique<Pipeline>(options);
-    pipeline_->add(makeRectifyStage(zone.rectify));
-    pipeline_->add(makeDisparityStage(config.stereo, config.median, backend, config.threads));
-    pipeline_->add(makeMaskStage(zone.thresholds, config.stereo, backend));
-    if (!config.detect.empty()) {  // as `horopter run` (without its head control)
-      DetectorOptions detector;
-      detector.scope =
-          config.detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
-      pipeline_->add(makeDetectionStage(detector));
-      TrackerOptions tracker;
-      tracker.rig = zone.rig;
-      tracker.framesPerSecond = zone.framesPerSecond;
-      tracker.captureTime = config.live;
-      pipeline_->add(makeTrackingStage(tracker));
-      if (config.movement) pipeline_->add(makeMovementStage(config.movement));
-    }
-    sourceName_ = source_->name();
+    PipelineHooks hooks;
+    hooks.stopRequested = &stop_;
+    hooks.onFrame = [this](const Frame& f) { push(f); };
+    pipeline_ = std::make_unique<AssembledPipeline>(buildPipeline(config, std::move(hooks)));
+    sourceName_ = pipeline_->source().name();
     thread_ = std::thread([this] { runPipeline(); });
   }
 
@@ -121,9 +81,18 @@ class PipelineRun {
     return py::module_::import("json").attr("loads")(summaryJson(summary_));
   }
   const std::string& sourceName() const { return sourceName_; }
+  // The frames' digest as `horopter run --json` prints it (after the run).
+  py::object digest() const {
+    std::lock_guard lock(mutex_);
+    if (!finished_) return py::none();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digest_));
+    return py::str(hex);
+  }
 
  private:
   void push(const Frame& f) {
+    digest_ = foldDigest(digest_, frameDigest(f));  // frames come in order, on one thread
     auto copy = std::make_unique<Frame>(f);  // Mat headers: the pixels are shared, not copied
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return queue_.size() < capacity_ || closed_; });
@@ -136,7 +105,7 @@ class PipelineRun {
     RunSummary summary;
     std::exception_ptr error;
     try {
-      summary = pipeline_->run(*source_);
+      summary = pipeline_->run();
     } catch (...) {
       error = std::current_exception();
     }
@@ -148,8 +117,8 @@ class PipelineRun {
   }
 
   std::size_t capacity_;
-  std::unique_ptr<FrameSource> source_;
-  std::unique_ptr<Pipeline> pipeline_;
+  std::unique_ptr<AssembledPipeline> pipeline_;
+  std::uint64_t digest_ = 0;
   std::string sourceName_;
   std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;
@@ -167,50 +136,54 @@ void bindPipeline(py::module_& m) {
   py::class_<PipelineRun>(m, "Pipeline",
                           "Runs a source through rectify -> disparity -> mask with several "
                           "frames in flight; iterate it for one dict per finished frame")
-      .def(py::init(
-               [](const std::string& source, std::optional<std::int64_t> frames,
-                  const py::object& params, const py::object& median, const std::string& backend,
-                  int threads, int inFlight, bool live, std::optional<std::pair<int, int>> size,
-                  std::uint64_t seed, const std::string& calib, double fixation,
-                  std::optional<double> fixationDisparity, std::optional<double> focalPx,
-                  const std::optional<std::string>& detect,
-                  const std::shared_ptr<MovementModel>& movementModel, const py::kwargs& kwargs) {
-                 RunConfig c;
-                 c.source = source;
-                 if (frames) {
-                   if (*frames < 1) throw py::value_error("frames must be >= 1");
-                   c.maxFrames = *frames;
-                   c.capture.frames = static_cast<int>(*frames);
-                 }
-                 c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
-                 applyStereoKwargs(c.stereo, kwargs);
-                 c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
-                 c.backend = backend;
-                 c.threads = threads;
-                 c.inFlight = inFlight;
-                 c.live = live;
-                 if (size) {
-                   c.capture.width = c.capture.scene.width = size->first;
-                   c.capture.height = c.capture.scene.height = size->second;
-                 }
-                 c.capture.scene.seed = seed;
-                 c.zone.calib = calib;
-                 c.zone.fixation = fixation;
-                 c.zone.fixationDisparity = fixationDisparity;
-                 c.zone.focalPx = focalPx;
-                 if (detect) {
-                   if (*detect != "region" && *detect != "full")
-                     throw py::value_error("detect takes 'region', 'full' or None, got '" +
-                                           *detect + "'");
-                   c.detect = *detect;
-                 }
-                 if (movementModel && !detect)
-                   throw py::value_error(
-                       "movement_model needs detect='region' or 'full' (movement analysis follows "
-                       "the tracked body)");
-                 c.movement = movementModel;
-                 return std::make_unique<PipelineRun>(c);
-               }),
+      .def(py::init([](const std::string& source, std::optional<std::int64_t> frames,
+                       const py::object& params, const py::object& median,
+                       const std::string& backend, int threads, int inFlight, bool live,
+                       std::optional<std::pair<int, int>> size, std::uint64_t seed,
+                       const std::string& calib, double fixation,
+                       std::optional<double> fixationDisparity, std::optional<double> focalPx,
+                       const std::optional<std::string>& detect,
+                       const std::shared_ptr<MovementModel>& movementModel, bool headControl,
+                       const py::kwargs& kwargs) {
+             PipelineConfig c;
+             c.source = source;
+             if (frames) {
+               if (*frames < 1) throw py::value_error("frames must be >= 1");
+               c.maxFrames = *frames;
+               c.capture.frames = static_cast<int>(*frames);
+             }
+             c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
+             applyStereoKwargs(c.stereo, kwargs);
+             c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
+             c.backend = backend;
+             c.threads = threads;
+             c.inFlight = inFlight;
+             c.live = live;
+             if (size) {
+               c.capture.width = c.capture.scene.width = size->first;
+               c.capture.height = c.capture.scene.height = size->second;
+             }
+             c.capture.scene.seed = seed;
+             c.zone.calib = calib;
+             c.zone.fixationDistanceM = fixation;
+             c.zone.fixationDisparityPx = fixationDisparity;
+             c.zone.focalPx = focalPx;
+             c.detection.reset();
+             if (detect) {
+               if (*detect != "region" && *detect != "full")
+                 throw py::value_error("detect takes 'region', 'full' or None, got '" + *detect +
+                                       "'");
+               c.detection =
+                   *detect == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion;
+             }
+             c.headControl = headControl;
+             if (movementModel && !detect)
+               throw py::value_error(
+                   "movement_model needs detect='region' or 'full' (movement analysis follows "
+                   "the tracked body)");
+             c.movement = movementModel;
+             return std::make_unique<PipelineRun>(c);
+           }),
            py::arg("source") = "synthetic", py::arg("frames") = py::none(),
            py::arg("params") = py::none(), py::arg("median") = py::none(),
            py::arg("backend") = "auto", py::arg("threads") = 1, py::arg("in_flight") = 3,
@@ -218,11 +191,15 @@ void bindPipeline(py::module_& m) {
            py::arg("calib") = "", py::arg("fixation") = 1.5,
            py::arg("fixation_disparity") = py::none(), py::arg("focal_px") = py::none(),
            py::arg("detect") = py::none(), py::arg("movement_model") = py::none(),
+           py::arg("head_control") = true,
            "Pipeline(source='synthetic', frames=None, params=None, median=None, "
            "backend='auto', threads=1, in_flight=3, live=False, size=None, seed=1, calib='', "
            "fixation=1.5, fixation_disparity=None, focal_px=None, detect=None, "
-           "movement_model=None, **stereo_kwargs). detect='region' or 'full' adds face and "
-           "hand detection and tracking (frame['detections'], ['tracking'], ['body']); "
+           "movement_model=None, head_control=True, **stereo_kwargs): the pipeline of "
+           "`horopter run` for the same configuration. detect='region' or 'full' adds face and "
+           "hand detection and tracking (frame['detections'], ['tracking'], ['body']); on the "
+           "synthetic scene (offline, no calib) the head control then turns the cameras "
+           "(head_control=False: they stay still); "
            "movement_model (a MovementModel) then adds movement analysis (frame['movement']). "
            "Sources: "
            "synthetic, dir:PATH, video:LEFT,RIGHT, camera:DEV,DEV, sbs:DEV (as horopter run)")
@@ -237,7 +214,10 @@ void bindPipeline(py::module_& m) {
            })
       .def_property_readonly("summary", &PipelineRun::summary,
                              "After the run: frames, fps, latency, stages (a dict), else None")
-      .def_property_readonly("source", &PipelineRun::sourceName);
+      .def_property_readonly("source", &PipelineRun::sourceName)
+      .def_property_readonly("digest", &PipelineRun::digest,
+                             "After the run: the frames' digest (hex), as `horopter run --json` "
+                             "prints it for the same configuration; else None");
 }
 
 }  // namespace horopter::python

@@ -1,0 +1,58 @@
+// What every C entry point shares: `guarded` runs a body and turns any
+// exception into a status and the thread's last-error message, so nothing
+// crosses into C. Internal to bindings/c.
+#pragma once
+
+#include <exception>
+#include <new>
+#include <string>
+
+#include "horopter/error.hpp"
+#include "horopter/horopter.h"
+#include "horopter/stereo_params.hpp"
+
+namespace horopter::c_api {
+
+inline thread_local std::string tLastError;
+
+// An argument the caller got wrong (the library's own horopter::Error is
+// about bad input too), and a file or device that failed.
+struct InvalidArgument : horopter::Error {
+  using horopter::Error::Error;
+};
+struct Failed : horopter::Error {
+  using horopter::Error::Error;
+};
+
+template <typename Fn>
+horopter_status guarded(Fn&& fn) noexcept {
+  try {
+    fn();
+    return HOROPTER_OK;
+  } catch (const Failed& e) {
+    tLastError = e.what();
+    return HOROPTER_ERROR_FAILED;
+  } catch (const horopter::Error& e) {
+    tLastError = e.what();
+    return HOROPTER_ERROR_INVALID_ARGUMENT;
+  } catch (const std::bad_alloc&) {
+    tLastError = "out of memory";
+    return HOROPTER_ERROR_OUT_OF_MEMORY;
+  } catch (const std::exception& e) {
+    tLastError = std::string("internal error: ") + e.what();
+    return HOROPTER_ERROR_INTERNAL;
+  } catch (...) {
+    tLastError = "internal error: unknown exception";
+    return HOROPTER_ERROR_INTERNAL;
+  }
+}
+
+template <typename T>
+void requireNonNull(const T* p, const char* what) {
+  if (!p) throw InvalidArgument(std::string(what) + " is NULL");
+}
+
+// The C parameters as the library's (validated where they are used).
+void paramsOf(const horopter_stereo_params& c, StereoParams& s, MedianParams& m);
+
+}  // namespace horopter::c_api

@@ -1,0 +1,124 @@
+// The application's one way to assemble the frame pipeline from a
+// configuration: `horopter run`, the Python module, the C API and the
+// evaluations all call buildPipeline(), so the same configuration gives the
+// same frames whichever of them runs it (tests/app/pipeline_parity_test.cpp).
+//
+// The pipeline is: capture -> rectify -> disparity -> mask -> detection ->
+// tracking -> head control (the synthetic scene's closed loop) -> movement
+// -> the caller's extra stages (a robot, a scorer). Which of them run follows
+// from the configuration: `stopAfter` cuts it after the front end, `detection`
+// switches the interaction half off, `movement` adds the classifier.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "horopter/backend.hpp"
+#include "horopter/capture.hpp"
+#include "horopter/detection.hpp"
+#include "horopter/head_control.hpp"
+#include "horopter/pipeline.hpp"
+#include "horopter/stereo_params.hpp"
+#include "horopter/tracking.hpp"
+#include "horopter/vision_stages.hpp"
+
+namespace horopter {
+
+class MovementModel;  // horopter/movement_classifier.hpp
+
+// Where the zone (and the rectification) come from, first that applies:
+// a calibration file; the synthetic scene's own rig and vergence; else the
+// source is taken as rectified and the zone from a fixation disparity.
+struct ZoneOptions {
+  std::string calib;                // calibration file (empty: none)
+  double fixationDistanceM = 1.5;   // with calib: fixation straight ahead, m, > 0
+  std::optional<double> fixationDisparityPx;  // else: on the centre column, px (default:
+                                              // the middle of the search range)
+  std::optional<double> focalPx;              // ... and the focal length, px (default:
+                                              // the image width)
+};
+
+// How far the pipeline goes: the whole of it, or only the front end up to a
+// stage (profiling; no detection then).
+enum class StopAfter { Everything, Rectify, Disparity, Mask };
+
+struct PipelineConfig {
+  // Capture: a source spec (see openSource) and its options.
+  std::string source = "synthetic";
+  CaptureOptions capture;
+  std::int64_t maxFrames = -1;  // stop after this many frames (-1: the source's end)
+  // Schedule.
+  bool live = false;  // live mode: capture never waits, stale frames are dropped
+  int inFlight = 3;   // frames in flight, 1..64
+  // Front end.
+  StereoParams stereo;
+  MedianParams median;
+  std::string backend = "auto";  // scalar, avx2, opencl..., auto
+  int threads = 1;               // the disparity stage's threads, 1..256
+  ZoneOptions zone;
+  StopAfter stopAfter = StopAfter::Everything;
+  // Interaction. Detection over the horopter's region or the full image;
+  // nothing: no detection, tracking or movement.
+  std::optional<DetectionScope> detection = DetectionScope::HoropterRegion;
+  DetectorOptions detector;  // its scope is `detection`'s
+  // The builder fills the tracker's rig, frame rate, largest disparity,
+  // clock (capture time when live) and, in the closed loop, capture pose.
+  TrackerOptions tracker;
+  // The synthetic scene in closed loop: the head control turns the
+  // cameras (offline, without a calibration file, with detection).
+  bool headControl = true;
+  HeadControlOptions head;
+  bool followHeadTurns = true;  // tracks move with the image when the head turns
+  std::shared_ptr<const MovementModel> movement;  // the classifier (null: none)
+};
+
+// What the caller adds: where finished frames go, a stop flag (Ctrl-C), and
+// stages after the built ones (a robot, a scorer).
+struct PipelineHooks {
+  std::function<void(const Frame&)> onFrame;
+  const std::atomic<bool>* stopRequested = nullptr;
+  std::vector<std::unique_ptr<Stage>> extraStages;
+};
+
+namespace synth {
+class SyntheticScene;
+}
+
+// A pipeline with its source, ready to run once.
+class AssembledPipeline {
+ public:
+  AssembledPipeline(AssembledPipeline&&) noexcept;
+  AssembledPipeline& operator=(AssembledPipeline&&) noexcept;
+  ~AssembledPipeline();
+
+  RunSummary run();
+  FrameSource& source();
+  const Backend& backend() const;
+  // The synthetic scene when the source renders one (its truth, its rig).
+  const synth::SyntheticScene* scene() const;
+  bool closedLoop() const;  // the head control turns the synthetic cameras
+  bool detecting() const;   // detection and tracking run
+
+ private:
+  friend AssembledPipeline buildPipeline(const PipelineConfig&, PipelineHooks);
+  struct Parts;
+  explicit AssembledPipeline(std::unique_ptr<Parts> parts);
+  std::unique_ptr<Parts> parts_;
+};
+
+// Throws horopter::Error for a bad configuration, source or calibration.
+AssembledPipeline buildPipeline(const PipelineConfig& config, PipelineHooks hooks = {});
+
+// A digest of what a frame's stages produced: its index, disparity, mask
+// and the godfather's tracked parts (FNV-1a, 64 bits). Equal digests over a
+// run mean equal outputs; the parity tests compare them across front ends.
+std::uint64_t frameDigest(const Frame& frame);
+// Frame digests folded in frame order.
+std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frameDigest);
+
+}  // namespace horopter
