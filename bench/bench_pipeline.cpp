@@ -10,6 +10,7 @@
 #include "horopter/backend.hpp"
 #include "horopter/capture.hpp"
 #include "horopter/pipeline.hpp"
+#include "horopter/sim/synthetic_source.hpp"
 #include "horopter/vision_stages.hpp"
 
 namespace {
@@ -38,7 +39,7 @@ class ReplaySource : public FrameSource {
 
 const std::vector<Frame>& replayFrames() {
   static const std::vector<Frame> frames = [] {
-    SyntheticSource source(synth::SceneOptions{}, 8);
+    sim::SyntheticSource source(synth::SceneOptions{}, 8);
     std::vector<Frame> out(8);
     for (auto& f : out)
       source.next(f);
@@ -68,13 +69,13 @@ void runBatches(benchmark::State& state, bool render) {
   Pipeline pipeline(options);
   addFrontEnd(pipeline, threads);
   replayFrames();  // rendered once, outside the timing
-  std::unique_ptr<SyntheticSource> synthetic;
+  std::unique_ptr<sim::SyntheticSource> synthetic;
   if (render) {
     // As horopter run: with frames in flight the scene renders on the
     // capture thread alone, the other core busy with the frames ahead.
     synth::SceneOptions scene;
     if (inFlight > 1) scene.threads = 1;
-    synthetic = std::make_unique<SyntheticSource>(scene, 1 << 30);
+    synthetic = std::make_unique<sim::SyntheticSource>(scene, 1 << 30);
   }
   for (auto _ : state) {
     if (render) {

@@ -1,6 +1,7 @@
 // The C API's whole pipeline: horopter_run over buildPipeline, the builder
 // `horopter run` and the Python module use (include/horopter/horopter.h).
 #include <atomic>
+#include <cmath>
 #include <string>
 
 #include "guarded.hpp"
@@ -17,20 +18,17 @@ std::string textOr(const char* text, const char* fallback) {
 
 horopter::PipelineConfig configOf(const horopter_run_config& r) {
   horopter::PipelineConfig c;
-  c.source = textOr(r.source, "synthetic");
+  if (!r.source) throw InvalidArgument("config.source is NULL: give dir:PATH, video:L,R, ...");
+  c.source = r.source;
   if (r.frames < 0)
     throw InvalidArgument("frames must be >= 0 (0: the source's end), got " +
                           std::to_string(r.frames));
-  if (r.frames > 0) {
-    c.maxFrames = r.frames;
-    c.capture.frames = r.frames;
-  }
-  if (r.width < 16 || r.height < 16 || r.width > 16384 || r.height > 16384)
-    throw InvalidArgument("width and height must be 16..16384, got " + std::to_string(r.width) +
-                          "x" + std::to_string(r.height));
-  c.capture.width = c.capture.scene.width = r.width;
-  c.capture.height = c.capture.scene.height = r.height;
-  c.capture.scene.seed = r.seed;
+  if (r.frames > 0) c.maxFrames = r.frames;
+  if (r.width < 0 || r.height < 0 || r.width > 16384 || r.height > 16384)
+    throw InvalidArgument("width and height must be 0..16384 (0: the camera's), got " +
+                          std::to_string(r.width) + "x" + std::to_string(r.height));
+  c.capture.width = r.width;
+  c.capture.height = r.height;
   c.backend = textOr(r.backend, "auto");
   if (r.threads < 1 || r.threads > 256)
     throw InvalidArgument("threads must be 1..256, got " + std::to_string(r.threads));
@@ -46,8 +44,12 @@ horopter::PipelineConfig configOf(const horopter_run_config& r) {
     c.detection.reset();
   else
     throw InvalidArgument("detect takes \"region\", \"full\" or \"off\", got \"" + detect + "\"");
-  c.headControl = r.head_control != 0;
   paramsOf(r.stereo, c.stereo, c.median);
+  for (const double v : {r.fixation_disparity_px, r.focal_px})
+    if (!(v >= 0 && std::isfinite(v)))
+      throw InvalidArgument("fixation_disparity_px and focal_px must be >= 0 (0: the default)");
+  if (r.fixation_disparity_px > 0) c.zone.fixationDisparityPx = r.fixation_disparity_px;
+  if (r.focal_px > 0) c.zone.focalPx = r.focal_px;
   return c;
 }
 
@@ -67,18 +69,18 @@ extern "C" {
 void horopter_run_config_default(horopter_run_config* config) {
   if (!config) return;
   *config = horopter_run_config{};
-  config->source = "synthetic";
+  config->source = NULL;
   config->frames = 0;
-  config->width = 640;
-  config->height = 480;
-  config->seed = 1;
+  config->width = 0;
+  config->height = 0;
   config->backend = "auto";
   config->threads = 1;
   config->in_flight = 3;
   config->live = 0;
   config->detect = "region";
-  config->head_control = 1;
   horopter_stereo_params_default(&config->stereo);
+  config->fixation_disparity_px = 0;
+  config->focal_px = 0;
 }
 
 horopter_status horopter_run(const horopter_run_config* config, horopter_frame_callback on_frame,

@@ -3,39 +3,16 @@
 #include "horopter/pipeline_builder.hpp"
 
 #include <algorithm>
-#include <any>
 #include <utility>
 
 #include "horopter/calibration.hpp"
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
 #include "horopter/movement.hpp"
-#include "horopter/synthetic_scene.hpp"
 
 namespace horopter {
 
 namespace {
-
-// The zone's thresholds for each frame from the synthetic scene's rig and
-// the vergence in the frame's truth (the head verges on what it looks at).
-ThresholdFunction syntheticZoneThresholds(const synth::SyntheticScene& scene) {
-  RectifiedGeometry g;
-  g.focalPx = scene.focalPx();
-  g.cx = scene.cx();
-  g.cy = scene.cy();
-  g.baseline = scene.baselineM();
-  return [g](const Frame& f, std::vector<std::int16_t>& out) {
-    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
-    if (!truth) throw Error("a synthetic frame without its truth");
-    if (!(truth->head.vergence > 1e-9)) {
-      std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front
-      return;
-    }
-    const ViethMuellerCircle circle =
-        viethMuellerCircle(g.baseline, fixationFromVergence(g.baseline, truth->head.vergence));
-    horopterThresholds(g, circle, out);
-  };
-}
 
 // Rectification, zone and rig: what the mask and the tracker need to know
 // of the cameras.
@@ -67,13 +44,13 @@ ZoneSetup calibratedZone(const ZoneOptions& zone) {
   return setup;
 }
 
-ZoneSetup zoneSetup(const PipelineConfig& c, const synth::SyntheticScene* scene) {
+ZoneSetup zoneSetup(const PipelineConfig& c, OpenedSource& opened) {
   if (!c.zone.calib.empty()) return calibratedZone(c.zone);
   ZoneSetup setup;
-  if (scene) {
-    setup.thresholds = syntheticZoneThresholds(*scene);
-    setup.rig = RectifiedGeometry{scene->focalPx(), scene->cx(), scene->baselineM(), scene->cy()};
-    setup.framesPerSecond = scene->options().framesPerSecond;
+  if (opened.thresholds) {
+    setup.thresholds = std::move(opened.thresholds);
+    setup.rig = opened.rig;
+    if (opened.framesPerSecond > 0) setup.framesPerSecond = opened.framesPerSecond;
   } else {
     setup.thresholds =
         fixationDisparityThresholds(c.stereo, c.zone.fixationDisparityPx, c.zone.focalPx);
@@ -85,7 +62,6 @@ ZoneSetup zoneSetup(const PipelineConfig& c, const synth::SyntheticScene* scene)
 
 struct AssembledPipeline::Parts {
   std::unique_ptr<FrameSource> source;
-  const synth::SyntheticScene* scene = nullptr;
   bool closedLoop = false;
   bool detecting = false;
   const Backend* backend = nullptr;
@@ -106,9 +82,6 @@ FrameSource& AssembledPipeline::source() {
 const Backend& AssembledPipeline::backend() const {
   return *parts_->backend;
 }
-const synth::SyntheticScene* AssembledPipeline::scene() const {
-  return parts_->scene;
-}
 bool AssembledPipeline::closedLoop() const {
   return parts_->closedLoop;
 }
@@ -121,26 +94,19 @@ AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
   parts->backend = &findBackend(c.backend);
   parts->detecting = c.detection.has_value() && c.stopAfter == StopAfter::Everything;
 
-  // Capture. With frames in flight the other cores work on the frames
-  // ahead, so the synthetic scene renders on the capture thread alone rather
-  // than adding OpenCV's threads beside the front end's pool.
-  CaptureOptions capture = c.capture;
-  if (c.inFlight > 1) capture.scene.threads = 1;
-  parts->closedLoop = parts->detecting && c.headControl && !c.live && c.zone.calib.empty() &&
-                      c.source == "synthetic";
-  ClosedLoopSyntheticSource* loop = nullptr;
-  if (parts->closedLoop) {
-    auto s = std::make_unique<ClosedLoopSyntheticSource>(
-        capture.scene, capture.frames, c.head.actuationDelayFrames, c.head.limits);
-    loop = s.get();
-    parts->scene = &s->scene();
-    parts->source = std::move(s);
-  } else {
-    parts->source = openSource(c.source, capture);
-    if (auto* synthetic = dynamic_cast<SyntheticSource*>(parts->source.get()))
-      parts->scene = &synthetic->scene();
+  // Capture: the caller's opener first (the simulator's sources), then the
+  // library's. A steerable source is wanted for the closed loop.
+  const bool steerable = parts->detecting && c.headControl && !c.live && c.zone.calib.empty();
+  std::optional<OpenedSource> opened;
+  if (hooks.openSource) opened = hooks.openSource(c, steerable);
+  if (!opened) {
+    opened.emplace();
+    opened->source = openSource(c.source, c.capture);
   }
-  const ZoneSetup zone = zoneSetup(c, parts->scene);
+  if (!opened->source) throw Error("the source opener for '" + c.source + "' opened nothing");
+  parts->closedLoop = steerable && opened->headControl;
+  const ZoneSetup zone = zoneSetup(c, *opened);
+  parts->source = std::move(opened->source);
 
   PipelineOptions options;
   options.mode = c.live ? PipelineMode::Live : PipelineMode::Offline;
@@ -166,9 +132,9 @@ AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
     tracker.framesPerSecond = zone.framesPerSecond;
     tracker.maxDisparityPx = c.stereo.minDisparity + c.stereo.numDisparities - 1;
     tracker.captureTime = c.live;
-    if (loop && c.followHeadTurns) tracker.capturePose = syntheticCapturePose();
+    if (parts->closedLoop && c.followHeadTurns) tracker.capturePose = opened->capturePose;
     p.add(makeTrackingStage(tracker));
-    if (loop) p.add(makeSyntheticHeadControlStage(c.head, *loop));
+    if (parts->closedLoop) p.add(opened->headControl(c.head));
     if (c.movement) p.add(makeMovementStage(c.movement));
   }
   for (auto& stage : hooks.extraStages)

@@ -1,4 +1,4 @@
-// openSource: a capture source from its spec, and the synthetic source.
+// openSource: a capture source from its spec.
 #include "capture/camera_sources.hpp"
 #include "capture/file_sources.hpp"
 #include "horopter/capture.hpp"
@@ -19,27 +19,14 @@ std::pair<std::string, std::string> twoPaths(const std::string& list, const std:
 
 }  // namespace
 
-SyntheticSource::SyntheticSource(const synth::SceneOptions& options, int frames)
-    : scene_(options), frames_(frames) {
-  if (frames < 1)
-    throw Error("the synthetic scene needs at least 1 frame, got " + std::to_string(frames));
-}
-
-bool SyntheticSource::next(Frame& frame) {
-  if (next_ >= frames_) return false;
-  synth::SyntheticFrame rendered = scene_.render(next_++);
-  frame.left = std::move(rendered.left);
-  frame.right = std::move(rendered.right);
-  frame.truth = std::move(rendered.truth);
-  return true;
-}
-
 std::unique_ptr<FrameSource> openSource(const std::string& spec, const CaptureOptions& options) {
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  if (kind == "synthetic" && rest.empty())
-    return std::make_unique<SyntheticSource>(options.scene, options.frames);
+  if (kind == "synthetic")
+    throw Error(
+        "the synthetic scene is the simulator's source: open it with "
+        "sim::syntheticSourceOpener (horopter run and the Python module do)");
   if (kind == "dir" && !rest.empty()) return std::make_unique<capture::DirectorySource>(rest);
   if (kind == "video") {
     const auto [l, r] = twoPaths(rest, spec);

@@ -24,6 +24,7 @@
 #include "horopter/option_table.hpp"
 #include "horopter/pipeline_builder.hpp"
 #include "horopter/robot_stage.hpp"
+#include "horopter/sim/synthetic_source.hpp"
 #include "run_annotation.hpp"
 
 namespace horopter::cli {
@@ -103,6 +104,7 @@ const char* kRunHelp =
 // choices (output, the model file, the simulated robot).
 struct RunJob {
   PipelineConfig config;
+  sim::SyntheticSourceOptions synthetic;  // the scene for --source synthetic
   bool framesGiven = false;
   int frames = 300;
   bool liveGiven = false;
@@ -123,13 +125,13 @@ RunJob parseRun(Args& args) {
     job.frames = static_cast<int>(parseInteger(*frames, "--frames", 1, 1000000000));
     job.framesGiven = true;
   }
-  c.capture.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
+  job.synthetic.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
   if (auto size = args.value("--size")) {
     const ImageSize wh = parseImageSize(*size, "--size", {16, 16}, {16384, 16384});
     c.capture.width = wh.width;
     c.capture.height = wh.height;
-    c.capture.scene.width = c.capture.width;
-    c.capture.scene.height = c.capture.height;
+    job.synthetic.scene.width = c.capture.width;
+    job.synthetic.scene.height = c.capture.height;
   }
   c.capture.fps = args.doubleValue("--fps", 0);
   c.capture.maxSkewMs = args.doubleValue("--max-skew-ms", c.capture.maxSkewMs);
@@ -193,11 +195,11 @@ RunJob parseRun(Args& args) {
   args.finish("run");
   const bool camera = c.source.rfind("camera:", 0) == 0 || c.source.rfind("sbs:", 0) == 0;
   if (camera && !job.liveGiven) c.live = true;
-  c.capture.frames = job.frames;
+  job.synthetic.frames = job.frames;
   c.maxFrames = job.framesGiven ? job.frames : -1;
   // A run scores nothing against the truth's per-pixel maps (its view shows
   // the head pose and the people's truth only): they are not computed.
-  c.capture.scene.pixelTruth = false;
+  job.synthetic.scene.pixelTruth = false;
   return job;
 }
 
@@ -317,7 +319,7 @@ int runPipeline(Args& args) {
   }
 
   const std::int64_t expected =
-      job.framesGiven ? job.frames : (c.source == "synthetic" ? c.capture.frames : -1);
+      job.framesGiven ? job.frames : (c.source == "synthetic" ? job.synthetic.frames : -1);
   Output output(job, expected);
   std::uint64_t digest = 0;
   PipelineHooks hooks;
@@ -326,6 +328,7 @@ int runPipeline(Args& args) {
     output(f);
   };
   hooks.stopRequested = &gInterrupted;
+  hooks.openSource = sim::syntheticSourceOpener(job.synthetic);
   // The simulated robot: commands go through the real drivers; Ctrl-C latches
   // the base's emergency stop at once (the robot stage checks it every frame).
   std::unique_ptr<hw::SimulatedRobot> robot;

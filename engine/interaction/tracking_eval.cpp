@@ -9,6 +9,7 @@
 #include "horopter/error.hpp"
 #include "horopter/geometry.hpp"
 #include "horopter/pipeline_builder.hpp"
+#include "horopter/sim/synthetic_source.hpp"
 #include "synthetic/rng.hpp"
 
 namespace horopter {
@@ -174,8 +175,6 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
   if (o.frames < 1)
     throw Error("a tracking trial needs at least 1 frame, got " + std::to_string(o.frames));
   PipelineConfig c;
-  c.capture.scene = trialScene(o);
-  c.capture.frames = o.frames;
   c.maxFrames = o.frames;
   c.inFlight = o.inFlight;
   c.stereo = o.stereo;
@@ -211,8 +210,8 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
                          scene->baselineM()});
   };
   hooks.extraStages = std::move(extraStages);
+  hooks.openSource = sim::syntheticSourceOpener({trialScene(o), o.frames}, &scene);
   AssembledPipeline pipeline = buildPipeline(c, std::move(hooks));
-  scene = pipeline.scene();
   scorer = std::make_unique<Scorer>(o, scene->focalPx(), scene->baselineM(), result);
   result.summary = pipeline.run();
   return result;

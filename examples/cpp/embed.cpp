@@ -1,77 +1,105 @@
-// Embedding the C++ API: frames of the built-in synthetic scene through the
-// stereo front end and the horopter mask, compared with the scene's truth.
+// Embedding the C++ API as a robot would: a rectified stereo pair through the
+// front end (disparity) and the horopter mask of a fixation, then the whole
+// pipeline (detection and tracking included) over a folder of pairs.
 //
-//   embed [--frames N] [--start I] [--backend NAME]
-// (from frame 60 on, the main person stands inside the zone)
+//   embed [--left L --right R] [--frames N] [--backend NAME]
+// (default pair: OpenCV's aloe, from Debian's opencv-doc)
 #include <horopter/frontend.hpp>
 #include <horopter/geometry.hpp>
 #include <horopter/opencv.hpp>
-#include <horopter/synthetic_scene.hpp>
+#include <horopter/pipeline_builder.hpp>
 
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
 int main(int argc, char** argv) {
-  int frames = 3;
-  int start = 60;
+  std::string leftPath = "/usr/share/doc/opencv-doc/examples/data/aloeL.jpg";
+  std::string rightPath = "/usr/share/doc/opencv-doc/examples/data/aloeR.jpg";
+  int frames = 2;
   std::string backend = "auto";
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
+    if (std::strcmp(argv[i], "--left") == 0 && i + 1 < argc) {
+      leftPath = argv[++i];
+    } else if (std::strcmp(argv[i], "--right") == 0 && i + 1 < argc) {
+      rightPath = argv[++i];
+    } else if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
       frames = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--start") == 0 && i + 1 < argc) {
-      start = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--backend") == 0 && i + 1 < argc) {
       backend = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: embed [--frames N] [--start I] [--backend NAME]\n");
+      std::fprintf(stderr, "usage: embed [--left L --right R] [--frames N] [--backend NAME]\n");
       return 2;
     }
   }
   try {
-    horopter::synth::SceneOptions options;
-    options.width = 320;
-    options.height = 240;
-    horopter::synth::SyntheticScene scene(options);
+    const cv::Mat leftColour = cv::imread(leftPath), rightColour = cv::imread(rightPath);
+    if (leftColour.empty() || rightColour.empty()) {
+      std::fprintf(stderr, "embed: cannot read %s and %s (install opencv-doc, or give a pair)\n",
+                   leftPath.c_str(), rightPath.c_str());
+      return 1;
+    }
+    cv::Mat left, right;
+    cv::cvtColor(leftColour, left, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(rightColour, right, cv::COLOR_BGR2GRAY);
 
-    horopter::StereoParams stereo;  // cv::StereoBM's names
+    // The front end: cv::StereoBM's names, a backend chosen at run time.
+    horopter::StereoParams stereo;
     stereo.numDisparities = 64;
     horopter::StereoFrontend frontend(stereo, horopter::MedianParams{},
                                       horopter::findBackend(backend));
-    const horopter::RectifiedGeometry geometry{scene.focalPx(), scene.cx(), scene.baselineM(),
-                                               scene.cy()};
-    for (int i = start; i < start + frames; ++i) {
-      const horopter::synth::SyntheticFrame frame = scene.render(i);
-      cv::Mat left, right;
-      cv::cvtColor(frame.left, left, cv::COLOR_BGR2GRAY);
-      cv::cvtColor(frame.right, right, cv::COLOR_BGR2GRAY);
-      frontend.computeDisparity(horopter::viewOf(left), horopter::viewOf(right));
+    frontend.computeDisparity(horopter::viewOf(left), horopter::viewOf(right));
 
-      // The zone: the circle through both cameras and the head's fixation.
-      const auto circle = horopter::viethMuellerCircle(
-          geometry.baseline,
-          horopter::fixationFromVergence(geometry.baseline, frame.truth.head.vergence));
-      std::vector<std::int16_t> thresholds(static_cast<std::size_t>(left.cols));
-      horopter::horopterThresholds(geometry, circle, thresholds);
-      frontend.computeMask(thresholds, horopter::viewOf(frame.left));
+    // The zone: the Vieth-Mueller circle through both cameras and a fixation
+    // 32 px of disparity straight ahead (focal length: the image width).
+    const horopter::RectifiedGeometry geometry{static_cast<double>(left.cols),
+                                               (left.cols - 1) / 2.0, 1.0, (left.rows - 1) / 2.0};
+    const std::vector<std::int16_t> thresholds = horopter::horopterThresholds(
+        geometry, left.cols, horopter::fixationFromDisparity(geometry, geometry.cx, 32.0));
+    frontend.computeMask(thresholds, horopter::viewOf(leftColour));
+    const cv::Mat mask = horopter::matOf(frontend.mask());
+    const double inside = 100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total());
+    std::printf("%s: %dx%d, %.1f%% inside the zone, backend %s\n", leftPath.c_str(), left.cols,
+                left.rows, inside, frontend.backend().name.c_str());
+    if (inside <= 1 || inside >= 99) {
+      std::fprintf(stderr, "embed: a zone that holds all or nothing of the pair\n");
+      return 1;
+    }
 
-      const cv::Mat mask = horopter::matOf(frontend.mask());
-      const int inside = cv::countNonZero(mask);
-      const int truthInside = cv::countNonZero(frame.truth.inside);
-      const int agree = cv::countNonZero(mask == frame.truth.inside);
-      std::printf(
-          "frame %d: %.1f%% inside the zone (truth %.1f%%), mask agrees with truth on %.1f%%"
-          " of pixels, backend %s\n",
-          i, 100.0 * inside / mask.total(), 100.0 * truthInside / mask.total(),
-          100.0 * agree / mask.total(), frontend.backend().name.c_str());
-      if (agree < 0.8 * static_cast<double>(mask.total())) {
-        std::fprintf(stderr, "embed: the mask disagrees with the truth on too many pixels\n");
+    // The whole pipeline over a folder of pairs (a camera would be
+    // "camera:/dev/video0,/dev/video2"), as `horopter run` assembles it.
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / "horopter_embed_pairs";
+    std::filesystem::create_directories(folder);
+    for (int i = 0; i < frames; ++i) {
+      const std::string n = std::to_string(i);
+      if (!cv::imwrite((folder / ("left_" + n + ".png")).string(), leftColour) ||
+          !cv::imwrite((folder / ("right_" + n + ".png")).string(), rightColour)) {
+        std::fprintf(stderr, "embed: cannot write the pairs to %s\n", folder.c_str());
         return 1;
       }
     }
-    return 0;
+    horopter::PipelineConfig config;
+    config.source = "dir:" + folder.string();
+    config.backend = backend;
+    config.stereo = stereo;
+    config.zone.fixationDisparityPx = 32.0;
+    horopter::PipelineHooks hooks;
+    int seen = 0;
+    hooks.onFrame = [&seen](const horopter::Frame& f) {
+      ++seen;
+      std::printf("frame %lld: godfather %s\n", static_cast<long long>(f.index),
+                  f.body.godfather ? "elected" : "none yet");
+    };
+    horopter::AssembledPipeline pipeline = horopter::buildPipeline(config, std::move(hooks));
+    const horopter::RunSummary summary = pipeline.run();
+    std::filesystem::remove_all(folder);
+    std::printf("%lld frames through the pipeline\n", static_cast<long long>(summary.completed));
+    return seen == frames ? 0 : 1;
   } catch (const std::exception& e) {  // horopter::Error says what to fix
     std::fprintf(stderr, "embed: %s\n", e.what());
     return 1;

@@ -1,13 +1,12 @@
-// Capture sources for the frame pipeline: the synthetic scene, a folder of
-// left/right images, a pair of video files, two V4L2 cameras, one
-// side-by-side stereo camera.
+// Capture sources for the frame pipeline: a folder of left/right images, a
+// pair of video files, two V4L2 cameras, one side-by-side stereo camera.
+// (The synthetic scene is the simulator's: horopter/sim/synthetic_source.hpp.)
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "horopter/pipeline.hpp"
-#include "horopter/synthetic_scene.hpp"
 
 namespace horopter {
 
@@ -19,34 +18,17 @@ struct CaptureOptions {
   double maxSkewMs = 15;
   // A camera that delivers nothing for this long ends the run with an error.
   double stallTimeoutMs = 2000;
-  // Synthetic scene.
-  synth::SceneOptions scene;
-  int frames = 300;  // the synthetic scene's length
 };
 
 // Opens a source from a spec:
-//   synthetic                 the built-in synthetic scene (CaptureOptions::scene)
 //   dir:PATH                  PATH/left*.{png,jpg,...} with PATH/right*.* (same count,
 //                             paired in sorted order), or PATH/left/ and PATH/right/
 //   video:LEFT,RIGHT          two video files, frame by frame
 //   camera:LEFTDEV,RIGHTDEV   two V4L2 cameras (/dev/video0,/dev/video2), paired by time
 //   sbs:DEV                   one side-by-side stereo camera (left half, right half)
-// Throws horopter::Error for an unknown spec, a missing file or device.
+// Throws horopter::Error for an unknown spec ("synthetic" is the simulator's:
+// a pipeline opens it through sim::syntheticSourceOpener), a missing file or
+// device.
 std::unique_ptr<FrameSource> openSource(const std::string& spec, const CaptureOptions& options);
-
-// The synthetic source, for the stages that need its scene (head commands,
-// ground truth). Each frame's truth is a synth::FrameTruth in Frame::truth.
-class SyntheticSource : public FrameSource {
- public:
-  SyntheticSource(const synth::SceneOptions& options, int frames);
-  std::string name() const override { return "synthetic"; }
-  bool next(Frame& frame) override;
-  synth::SyntheticScene& scene() { return scene_; }
-
- private:
-  synth::SyntheticScene scene_;
-  int frames_;
-  int next_ = 0;
-};
 
 }  // namespace horopter

@@ -143,22 +143,26 @@ horopter_status horopter_thresholds_at_distance(const horopter_geometry* geometr
  * run` and the Python module's Pipeline (horopter_run_summary.digest equals
  * their frames_digest / digest). Start from horopter_run_config_default. */
 typedef struct horopter_run_config {
-  const char* source;  /* "synthetic", "dir:PATH", "video:L,R", "camera:L,R", "sbs:DEV" */
-  int frames;          /* > 0: stop after this many; 0: the source's end (synthetic: 300) */
-  int width, height;   /* the synthetic scene's size, px (16..16384) */
-  uint64_t seed;       /* the synthetic scene's seed */
+  const char* source;  /* "dir:PATH", "video:L,R", "camera:L,R", "sbs:DEV" (the synthetic
+                          scene is the simulator's, not libhoropter's) */
+  int frames;          /* > 0: stop after this many; 0: the source's end */
+  int width, height;   /* cameras: the requested size, px (0: the driver's) */
   const char* backend; /* "auto", "scalar", "avx2", "opencl", ... */
   int threads;         /* the disparity stage's threads, 1..256 */
   int in_flight;       /* frames in flight, 1..64 */
   int live;            /* 1: live mode (capture never waits; stale frames dropped) */
   const char* detect;  /* "region", "full" or "off" (front end only) */
-  int head_control;    /* 1: on the synthetic scene, the head turns the cameras */
   horopter_stereo_params stereo;
+  /* The zone of a source rectified already: the fixation's disparity on the
+   * centre column (0: the middle of the search range) and the focal length
+   * (0: the image width), px. */
+  double fixation_disparity_px;
+  double focal_px;
 } horopter_run_config;
 
-/* source "synthetic", frames 0, 640x480, seed 1, backend "auto", 1 thread,
- * 3 in flight, offline, detect "region", head control on, stereo defaults
- * (horopter_stereo_params_default). */
+/* source NULL (set one), frames 0, the camera's size, backend "auto",
+ * 1 thread, 3 in flight, offline, detect "region", stereo defaults
+ * (horopter_stereo_params_default), fixation and focal length 0 (defaults). */
 void horopter_run_config_default(horopter_run_config* config);
 
 /* What the caller sees of each finished frame, in frame order. Positions in

@@ -35,8 +35,8 @@ class MovementModel;  // horopter/movement_classifier.hpp
 // a calibration file; the synthetic scene's own rig and vergence; else the
 // source is taken as rectified and the zone from a fixation disparity.
 struct ZoneOptions {
-  std::string calib;                // calibration file (empty: none)
-  double fixationDistanceM = 1.5;   // with calib: fixation straight ahead, m, > 0
+  std::string calib;                          // calibration file (empty: none)
+  double fixationDistanceM = 1.5;             // with calib: fixation straight ahead, m, > 0
   std::optional<double> fixationDisparityPx;  // else: on the centre column, px (default:
                                               // the middle of the search range)
   std::optional<double> focalPx;              // ... and the focal length, px (default:
@@ -48,7 +48,7 @@ struct ZoneOptions {
 enum class StopAfter { Everything, Rectify, Disparity, Mask };
 
 struct PipelineConfig {
-  // Capture: a source spec (see openSource) and its options.
+  // Capture: a source spec (see openSource, or a source opener's) and its options.
   std::string source = "synthetic";
   CaptureOptions capture;
   std::int64_t maxFrames = -1;  // stop after this many frames (-1: the source's end)
@@ -69,25 +69,46 @@ struct PipelineConfig {
   // The builder fills the tracker's rig, frame rate, largest disparity,
   // clock (capture time when live) and, in the closed loop, capture pose.
   TrackerOptions tracker;
-  // The synthetic scene in closed loop: the head control turns the
-  // cameras (offline, without a calibration file, with detection).
+  // A steerable source (the simulator's rig) in closed loop: the head
+  // control turns its cameras (offline, without a calibration file, with
+  // detection).
   bool headControl = true;
   HeadControlOptions head;
-  bool followHeadTurns = true;  // tracks move with the image when the head turns
+  bool followHeadTurns = true;                    // tracks move with the image when the head turns
   std::shared_ptr<const MovementModel> movement;  // the classifier (null: none)
 };
 
-// What the caller adds: where finished frames go, a stop flag (Ctrl-C), and
-// stages after the built ones (a robot, a scorer).
+// A source as an opener delivers it: the frames, and what the source knows
+// of itself that the configuration would otherwise have to say.
+struct OpenedSource {
+  std::unique_ptr<FrameSource> source;
+  // A source that knows its rig (a simulator): the zone's thresholds for
+  // each frame, the rectified geometry and the frame rate of its clock.
+  // Empty thresholds: the zone comes from the configuration.
+  ThresholdFunction thresholds;
+  RectifiedGeometry rig;       // focalPx 0: unknown
+  double framesPerSecond = 0;  // 0: the tracker's default
+  // A steerable source (closed loop): the stage that turns its cameras,
+  // and how a frame tells the pose it was captured with.
+  std::function<std::unique_ptr<Stage>(const HeadControlOptions&)> headControl;
+  CapturePose capturePose;
+};
+
+// Opens the configuration's source if it knows its spec (nothing
+// otherwise: the builder then calls openSource). `steerable`: the builder
+// wants a source its head control can turn (closed loop), when there is one.
+using SourceOpener =
+    std::function<std::optional<OpenedSource>(const PipelineConfig& config, bool steerable)>;
+
+// What the caller adds: where finished frames go, a stop flag (Ctrl-C),
+// stages after the built ones (a robot, a scorer), and an opener for
+// sources the library does not know (the simulator's "synthetic").
 struct PipelineHooks {
   std::function<void(const Frame&)> onFrame;
   const std::atomic<bool>* stopRequested = nullptr;
   std::vector<std::unique_ptr<Stage>> extraStages;
+  SourceOpener openSource;
 };
-
-namespace synth {
-class SyntheticScene;
-}
 
 // A pipeline with its source, ready to run once.
 class AssembledPipeline {
@@ -99,9 +120,7 @@ class AssembledPipeline {
   RunSummary run();
   FrameSource& source();
   const Backend& backend() const;
-  // The synthetic scene when the source renders one (its truth, its rig).
-  const synth::SyntheticScene* scene() const;
-  bool closedLoop() const;  // the head control turns the synthetic cameras
+  bool closedLoop() const;  // the head control turns the source's cameras
   bool detecting() const;   // detection and tracking run
 
  private:

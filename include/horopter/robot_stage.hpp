@@ -12,7 +12,7 @@
 
 #include "horopter/hardware/base.hpp"
 #include "horopter/hardware/head.hpp"
-#include "horopter/hardware/sim_robot.hpp"
+#include "horopter/hardware/telemetry.hpp"
 #include "horopter/pipeline.hpp"
 
 namespace horopter {
@@ -27,7 +27,7 @@ struct RobotStageOptions {
   hw::Head* head = nullptr;  // not owned; null: no head commands
   hw::Base* base = nullptr;  // not owned; null: no base commands
   // Optional: the telemetry source and log (not owned; both or neither).
-  const hw::SimulatedRobot* telemetrySource = nullptr;
+  const hw::TelemetrySource* telemetrySource = nullptr;
   hw::TelemetryLog* log = nullptr;
   // Optional: once it reads true (Ctrl-C), the base's emergency stop is
   // latched and no more commands are sent.

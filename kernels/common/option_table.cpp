@@ -43,8 +43,9 @@ double parseNumber(const std::string& text, const std::string& option, double mi
   // A range that admits every finite double is not worth printing.
   const bool anyFinite = min <= -1e300 && max >= 1e300;
   const std::string expected =
-      option + (anyFinite ? " needs a finite number"
-                          : " needs a number within " + numberText(min) + ".." + numberText(max)) +
+      option +
+      (anyFinite ? " needs a finite number"
+                 : " needs a number within " + numberText(min) + ".." + numberText(max)) +
       ", got '" + text + "'";
   if (text.empty() || std::isspace(static_cast<unsigned char>(text.front())) || text[0] == '+')
     throw Error(expected);
@@ -53,8 +54,8 @@ double parseNumber(const std::string& text, const std::string& option, double mi
   const double v = std::strtod(text.c_str(), &end);
   // strtod reads "nan", "inf" and hexadecimal floats: none is a parameter.
   const bool hex = text.find_first_of("xX") != std::string::npos;
-  if (errno == ERANGE || end != text.c_str() + text.size() || hex || !std::isfinite(v) ||
-      v < min || v > max)
+  if (errno == ERANGE || end != text.c_str() + text.size() || hex || !std::isfinite(v) || v < min ||
+      v > max)
     throw Error(expected);
   return v;
 }

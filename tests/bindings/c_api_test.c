@@ -1,11 +1,13 @@
 /* The C API from C: a known shift through the matcher, the mask against the
  * threshold table, and every kind of bad input answered by a status and a
  * message (no crash, no exception). Prints "N passed, N failed". */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <horopter/horopter.h>
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static int passed = 0, failed = 0;
 
@@ -177,38 +179,81 @@ static int stop_after(const horopter_frame_result* frame, void* user) {
   return frame->index + 1 >= *limit;
 }
 
-/* The whole pipeline: frames arrive with their images, a callback can stop
- * the run, and a bad configuration is a status with a message. */
+/* A binary PGM (P5) file; 0 on failure. */
+static int write_pgm(const char* path, const unsigned char* pixels, int w, int h) {
+  FILE* f = fopen(path, "wb");
+  if (!f) return 0;
+  const int ok = fprintf(f, "P5\n%d %d\n255\n", w, h) > 0 &&
+                 fwrite(pixels, 1, (size_t)w * h, f) == (size_t)w * h;
+  return fclose(f) == 0 && ok;
+}
+
+/* The whole pipeline on a folder of pairs: frames arrive in order with their
+ * disparity, a callback can stop the run, and a bad configuration is a
+ * status with a message. */
 static void test_run(void) {
+  enum { W = 96, H = 64, PAIRS = 12 };
+  char dir[] = "/tmp/horopter_c_run_XXXXXX";
+  CHECK(mkdtemp(dir) != NULL);
+  static unsigned char left[W * H], right[W * H];
+  make_pair(left, right, W, H, 5);
+  for (int i = 0; i < PAIRS; ++i) {
+    char path[128];
+    snprintf(path, sizeof path, "%s/left_%02d.pgm", dir, i);
+    CHECK(write_pgm(path, left, W, H));
+    snprintf(path, sizeof path, "%s/right_%02d.pgm", dir, i);
+    CHECK(write_pgm(path, right, W, H));
+  }
+  char source[160];
+  snprintf(source, sizeof source, "dir:%s", dir);
+
   horopter_run_config config;
   horopter_run_config_default(&config);
-  config.width = 160;
-  config.height = 120;
-  config.frames = 30;
+  CHECK(horopter_run(&config, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "source") != NULL);
+  config.source = source;
+  config.detect = "off";
+  config.stereo.num_disparities = 16;
+  config.stereo.block_size = 5;
   config.in_flight = 2;
-  int limit = 5;
-  horopter_run_summary summary;
-  CHECK(horopter_run(&config, stop_after, &limit, &summary) == HOROPTER_OK);
+  horopter_run_summary whole;
+  CHECK(horopter_run(&config, NULL, NULL, &whole) == HOROPTER_OK);
+  CHECK(whole.frames == PAIRS);
+  CHECK(whole.digest != 0);
+  int limit = 4;
+  horopter_run_summary stopped;
+  CHECK(horopter_run(&config, stop_after, &limit, &stopped) == HOROPTER_OK);
   /* Capture stops; the frame being captured and those in flight still finish. */
-  CHECK(summary.frames >= 5 && summary.frames <= 5 + config.in_flight);
-  CHECK(summary.digest != 0);
+  CHECK(stopped.frames >= 4 && stopped.frames <= 4 + config.in_flight);
 
   horopter_run_config bad = config;
   bad.detect = "everywhere";
   CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
   CHECK(strstr(horopter_last_error(), "everywhere") != NULL);
   bad = config;
-  bad.width = 8;
-  CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
-  CHECK(strstr(horopter_last_error(), "width") != NULL);
-  bad = config;
   bad.in_flight = 0;
   CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  bad = config;
+  bad.focal_px = -1;
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  bad = config;
+  bad.source = "synthetic";
+  CHECK(horopter_run(&bad, NULL, NULL, NULL) != HOROPTER_OK);
+  CHECK(strstr(horopter_last_error(), "simulator") != NULL);
   bad = config;
   bad.source = "dir:/no/such/folder";
   CHECK(horopter_run(&bad, NULL, NULL, NULL) != HOROPTER_OK);
   CHECK(strlen(horopter_last_error()) > 0);
   CHECK(horopter_run(NULL, NULL, NULL, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+
+  for (int i = 0; i < PAIRS; ++i) {
+    char path[128];
+    snprintf(path, sizeof path, "%s/left_%02d.pgm", dir, i);
+    remove(path);
+    snprintf(path, sizeof path, "%s/right_%02d.pgm", dir, i);
+    remove(path);
+  }
+  rmdir(dir);
 }
 
 int main(void) {

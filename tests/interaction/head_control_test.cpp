@@ -10,6 +10,7 @@
 
 #include "horopter/error.hpp"
 #include "horopter/head_control.hpp"
+#include "horopter/sim/closed_loop.hpp"
 #include "horopter/tracking.hpp"
 
 namespace horopter {
@@ -183,7 +184,7 @@ TEST(HeadControlStage, FramesTheHandsExtentWithinALimit) {
 }
 
 TEST(SyntheticRigHead, ACommandFromFrameNActsAtFrameNPlusTheDelay) {
-  SyntheticRigHead rig({0, 0, 0.06}, HeadControlOptions{}.limits, 3);
+  sim::SyntheticRigHead rig({0, 0, 0.06}, HeadControlOptions{}.limits, 3);
   for (int frame = 0; frame < 3; ++frame)
     EXPECT_EQ(rig.poseForFrame(frame).pan, 0) << frame;
   rig.post(0, std::nullopt);
@@ -197,7 +198,7 @@ TEST(SyntheticRigHead, ACommandFromFrameNActsAtFrameNPlusTheDelay) {
   // Frame 6 waits for frame 3's post, which never comes.
   EXPECT_THROW(rig.poseForFrame(6, std::chrono::milliseconds(20)), Error);
   EXPECT_THROW(rig.post(2, std::nullopt), Error) << "out of order";
-  EXPECT_THROW(SyntheticRigHead({0, 0, 0}, HeadControlOptions{}.limits, 0), Error);
+  EXPECT_THROW(sim::SyntheticRigHead({0, 0, 0}, HeadControlOptions{}.limits, 0), Error);
 }
 
 }  // namespace

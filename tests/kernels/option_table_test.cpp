@@ -26,8 +26,8 @@ TEST(OptionTable, IntegersParseWholeAndInRangeOnly) {
   EXPECT_EQ(parseInteger("42", "--n", 0, 100), 42);
   EXPECT_EQ(parseInteger("-7", "--n", -10, 10), -7);
   EXPECT_EQ(parseInteger("0", "--n", 0, 0), 0);
-  for (const char* bad : {"", "abc", "2junk", "4 ", " 4", "+4", "4.0", "1e3", "0x10", "nan",
-                          "101", "-1", "99999999999999999999"}) {
+  for (const char* bad : {"", "abc", "2junk", "4 ", " 4", "+4", "4.0", "1e3", "0x10", "nan", "101",
+                          "-1", "99999999999999999999"}) {
     const std::string message = errorOf([&] { parseInteger(bad, "--n", 0, 100); });
     EXPECT_NE(message.find("--n needs an integer within 0..100"), std::string::npos) << bad;
     EXPECT_NE(message.find(std::string("'") + bad + "'"), std::string::npos) << bad;
@@ -64,7 +64,8 @@ TEST(OptionTable, EveryStereoOptionHasADefaultInRangeAndAnUniqueNameAndFlag) {
 
 TEST(OptionTable, ValidateNamesEachOptionOutOfItsRange) {
   for (const IntOption<StereoParams>& o : stereoOptions()) {
-    for (const long long v : {static_cast<long long>(o.min) - 1, static_cast<long long>(o.max) + 1}) {
+    for (const long long v :
+         {static_cast<long long>(o.min) - 1, static_cast<long long>(o.max) + 1}) {
       if (v < INT_MIN || v > INT_MAX) continue;
       StereoParams p;
       p.*o.member = static_cast<int>(v);

@@ -12,6 +12,7 @@
 #include "horopter/error.hpp"
 #include "horopter/frontend.hpp"
 #include "horopter/opencv.hpp"
+#include "horopter/sim/synthetic_source.hpp"
 #include "horopter/vision_stages.hpp"
 
 namespace horopter {
@@ -209,7 +210,7 @@ TEST(Capture, SyntheticRunIsDeterministicAcrossThreadsAndDepth) {
               out.assign(static_cast<std::size_t>(f.disparity.cols), 16 * 24);
             },
             stereo, backend));
-    SyntheticSource source(synth::SceneOptions{}, 5);
+    sim::SyntheticSource source(synth::SceneOptions{}, 5);
     pipeline.run(source);
     return masks;
   };

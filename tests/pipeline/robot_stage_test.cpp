@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "horopter/error.hpp"
+#include "horopter/hardware/sim_robot.hpp"
 #include "horopter/movement.hpp"
 #include "horopter/robot_stage.hpp"
 #include "horopter/tracking.hpp"

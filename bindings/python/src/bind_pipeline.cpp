@@ -19,6 +19,7 @@
 #include "horopter/error.hpp"
 #include "horopter/movement_classifier.hpp"
 #include "horopter/pipeline_builder.hpp"
+#include "horopter/sim/synthetic_source.hpp"
 #include "stereo_args.hpp"
 
 namespace horopter::python {
@@ -27,9 +28,10 @@ namespace {
 
 class PipelineRun {
  public:
-  explicit PipelineRun(const PipelineConfig& config)
+  PipelineRun(const PipelineConfig& config, const sim::SyntheticSourceOptions& synthetic)
       : capacity_(static_cast<std::size_t>(config.inFlight)) {
     PipelineHooks hooks;
+    hooks.openSource = sim::syntheticSourceOpener(synthetic);
     hooks.stopRequested = &stop_;
     hooks.onFrame = [this](const Frame& f) { push(f); };
     pipeline_ = std::make_unique<AssembledPipeline>(buildPipeline(config, std::move(hooks)));
@@ -146,11 +148,12 @@ void bindPipeline(py::module_& m) {
                        const std::shared_ptr<MovementModel>& movementModel, bool headControl,
                        const py::kwargs& kwargs) {
              PipelineConfig c;
+             sim::SyntheticSourceOptions synthetic;
              c.source = source;
              if (frames) {
                if (*frames < 1) throw py::value_error("frames must be >= 1");
                c.maxFrames = *frames;
-               c.capture.frames = static_cast<int>(*frames);
+               synthetic.frames = static_cast<int>(*frames);
              }
              c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
              applyStereoKwargs(c.stereo, kwargs);
@@ -160,10 +163,10 @@ void bindPipeline(py::module_& m) {
              c.inFlight = inFlight;
              c.live = live;
              if (size) {
-               c.capture.width = c.capture.scene.width = size->first;
-               c.capture.height = c.capture.scene.height = size->second;
+               c.capture.width = synthetic.scene.width = size->first;
+               c.capture.height = synthetic.scene.height = size->second;
              }
-             c.capture.scene.seed = seed;
+             synthetic.scene.seed = seed;
              c.zone.calib = calib;
              c.zone.fixationDistanceM = fixation;
              c.zone.fixationDisparityPx = fixationDisparity;
@@ -182,7 +185,7 @@ void bindPipeline(py::module_& m) {
                    "movement_model needs detect='region' or 'full' (movement analysis follows "
                    "the tracked body)");
              c.movement = movementModel;
-             return std::make_unique<PipelineRun>(c);
+             return std::make_unique<PipelineRun>(c, synthetic);
            }),
            py::arg("source") = "synthetic", py::arg("frames") = py::none(),
            py::arg("params") = py::none(), py::arg("median") = py::none(),

@@ -23,9 +23,7 @@
 // so a stage written against them runs unchanged on the real drivers.
 #pragma once
 
-#include <fstream>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 
@@ -33,41 +31,16 @@
 #include "horopter/hardware/head.hpp"
 #include "horopter/hardware/head_health.hpp"
 #include "horopter/hardware/rmp_base.hpp"
+#include "horopter/hardware/telemetry.hpp"
 
 namespace horopter::hw {
-
-struct TelemetrySample {
-  double t = 0;  // seconds since the robot started
-  std::optional<HeadAngles> headCommanded;
-  std::optional<HeadMeasurement> headMeasured;
-  std::optional<BaseVelocity> baseCommanded;  // what the caller asked
-  BaseVelocity baseSent;                      // what the driver sent after the safety rules
-  std::optional<Odometry> odometry;           // pose and measured velocity
-  bool emergencyStop = false;
-  HeadHealth head;
-  BaseHealth base;
-};
-
-// JSON lines: one object per sample, flushed per line (a crash keeps what was written).
-class TelemetryLog {
- public:
-  explicit TelemetryLog(const std::string& path);  // throws horopter::Error if it cannot write
-  void write(const TelemetrySample& sample);
-  static std::string toJson(const TelemetrySample& sample);
-  long lines() const { return lines_; }
-
- private:
-  std::mutex mutex_;
-  std::ofstream out_;
-  long lines_ = 0;
-};
 
 struct SimulatedRobotOptions {
   bool vergence = true;
   RmpBaseOptions base;  // safety limits etc.; startThread is forced on
 };
 
-class SimulatedRobot {
+class SimulatedRobot : public TelemetrySource {
  public:
   explicit SimulatedRobot(SimulatedRobotOptions options = {});
   ~SimulatedRobot();
@@ -77,7 +50,7 @@ class SimulatedRobot {
   Head& head();
   Base& base();
   // The latest commands, measurements, odometry, e-stop and faults.
-  TelemetrySample sample() const;
+  TelemetrySample sample() const override;
   // Ground truth of the simulated base (for tests and the log's sanity).
   double trueX() const;
   void shutdown();
