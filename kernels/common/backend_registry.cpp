@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "common/cpu_backend.hpp"
 #include "common/cpu_features.hpp"
 #include "horopter/backend.hpp"
 #include "horopter/error.hpp"
@@ -70,6 +71,12 @@ std::string knownNames() {
 const Backend& scalarBackend() {
   static const Backend scalar = makeScalar();
   return scalar;
+}
+
+const Backend& cpuBackend() {
+  const Backend& avx2 = avx2Backend();
+  if (forcedName() == "scalar" || !avx2.available) return scalarBackend();
+  return avx2;
 }
 
 const std::vector<const Backend*>& registeredBackends() {
