@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "common/cpu_backend.hpp"
 #include "horopter/error.hpp"
 #include "horopter/frontend.hpp"
 #include "opencl/opencl_backend.hpp"
@@ -11,14 +12,6 @@
 namespace horopter {
 
 namespace {
-
-// The best available backend that runs on the CPU: the fallback.
-const Backend& bestCpuBackend() {
-  const Backend* best = &scalarBackend();
-  for (const Backend* b : registeredBackends())
-    if (b->available && b->name.rfind("opencl", 0) != 0) best = b;
-  return *best;
-}
 
 // The registered OpenCL backend `device` names; throws horopter::Error for a
 // name that names nothing (a typo must not pass for a missing GPU).
@@ -38,7 +31,7 @@ const Backend& openclBackendNamed(const std::string& device) {
 class OpenClFrontend::CpuPath {
  public:
   CpuPath(const StereoParams& stereo, const MedianParams& median, int threads)
-      : frontend(stereo, median, bestCpuBackend(), threads) {}
+      : frontend(stereo, median, cpuBackend(), threads) {}
   StereoFrontend frontend;
 };
 

@@ -11,9 +11,10 @@
 //
 // Fallback: if the device cannot be used (no platform, a failed program
 // build, a failed enqueue, a device that goes away), a warning goes to
-// stderr and this frame and every later one run on the best CPU backend,
-// with the same results; no frame is lost or reordered. A device name that
-// names nothing is an error (horopter::Error), not a fallback.
+// stderr and this frame and every later one run on the best CPU backend
+// (scalar when HOROPTER_BACKEND=scalar), with the same results; no frame is
+// lost or reordered. A device name that names nothing is an error
+// (horopter::Error), not a fallback.
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "common/cpu_backend.hpp"
+#include "common/cpu_features.hpp"
 #include "horopter/backend.hpp"
 #include "horopter/error.hpp"
 #include "horopter_mask/horopter_mask.hpp"
@@ -30,22 +32,13 @@ Backend makeScalar() {
   return b;
 }
 
-bool cpuHasAvx2() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-#else
-  return false;
-#endif
-}
-
 // AVX2 kernels where they exist.
 Backend makeAvx2() {
   Backend b;
   b.name = "avx2";
   b.description = "hand-written AVX2 kernels (x86-64 CPUs with AVX2)";
-  b.available = cpuHasAvx2();
-  if (!b.available) b.unavailableReason = "this CPU has no AVX2";
+  b.available = cpuRunsAvx2Backend();
+  if (!b.available) b.unavailableReason = "this CPU or its OS lacks one of " HOROPTER_AVX2_FEATURES;
   b.kernels.prefilterXSobel = avx2::prefilterXSobel;
   b.kernels.matchBlocks = avx2::matchBlocks;
   b.kernels.leftRightCheck = avx2::leftRightCheck;
@@ -53,6 +46,17 @@ Backend makeAvx2() {
   b.kernels.medianFilter = avx2::medianFilter;
   b.kernels.horopterMask = avx2::horopterMask;
   return b;
+}
+
+const Backend& avx2Backend() {
+  static const Backend avx2 = makeAvx2();
+  return avx2;
+}
+
+// The name HOROPTER_BACKEND gives, or "" when unset.
+std::string forcedName() {
+  const char* forced = std::getenv("HOROPTER_BACKEND");
+  return forced != nullptr ? std::string(forced) : std::string();
 }
 
 std::string knownNames() {
@@ -69,8 +73,13 @@ const Backend& scalarBackend() {
   return scalar;
 }
 
+const Backend& cpuBackend() {
+  const Backend& avx2 = avx2Backend();
+  if (forcedName() == "scalar" || !avx2.available) return scalarBackend();
+  return avx2;
+}
+
 const std::vector<const Backend*>& registeredBackends() {
-  static const Backend avx2 = makeAvx2();
   // OpenCL entries sit before the CPU SIMD ones, so that `auto` never picks
   // a device path on its own: `--backend opencl` asks for it.
   static const std::vector<Backend> opencl = opencl::makeBackends();
@@ -78,7 +87,7 @@ const std::vector<const Backend*>& registeredBackends() {
     std::vector<const Backend*> list = {&scalarBackend()};
     for (const Backend& b : opencl)
       list.push_back(&b);
-    list.push_back(&avx2);
+    list.push_back(&avx2Backend());
     return list;
   }();
   return all;
@@ -87,8 +96,8 @@ const std::vector<const Backend*>& registeredBackends() {
 const Backend& findBackend(const std::string& name) {
   std::string wanted = name;
   if (wanted == "auto") {
-    const char* forced = std::getenv("HOROPTER_BACKEND");
-    if (forced != nullptr && *forced != '\0' && std::string(forced) != "auto") wanted = forced;
+    const std::string forced = forcedName();
+    if (!forced.empty() && forced != "auto") wanted = forced;
   }
   if (wanted == "auto") {
     const Backend* best = &scalarBackend();

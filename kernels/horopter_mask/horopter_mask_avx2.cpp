@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "common/cpu_features.hpp"
 #include "horopter_mask/horopter_mask.hpp"
 
 namespace horopter::avx2 {
@@ -25,16 +26,17 @@ namespace {
 
 constexpr int kStep = 32;
 
-inline __m256i load(const void* p) {
+HOROPTER_AVX2_TARGET inline __m256i load(const void* p) {
   return _mm256_loadu_si256(static_cast<const __m256i*>(p));
 }
-inline void store(void* p, __m256i v) {
+HOROPTER_AVX2_TARGET inline void store(void* p, __m256i v) {
   _mm256_storeu_si256(static_cast<__m256i*>(p), v);
 }
 
 // 0xFF where pixel x + i is inside, for i in 0..31.
-inline __m256i maskStep(const std::int16_t* d, const std::int16_t* t, int x, __m256i invalid) {
-  auto outside = [&](int at) {
+HOROPTER_AVX2_TARGET inline __m256i maskStep(const std::int16_t* d, const std::int16_t* t, int x,
+                                             __m256i invalid) {
+  auto outside = [&](int at) HOROPTER_AVX2_TARGET {
     const __m256i dv = load(d + at);
     return _mm256_or_si256(_mm256_cmpeq_epi16(dv, invalid), _mm256_cmpgt_epi16(load(t + at), dv));
   };
@@ -50,7 +52,7 @@ struct Expand3 {
   __m256i first, second, third;
 };
 
-Expand3 expand3Indices() {
+HOROPTER_AVX2_TARGET Expand3 expand3Indices() {
   alignas(32) std::int8_t idx[3][32];
   for (int j = 0; j < 32; ++j) {
     idx[0][j] = static_cast<std::int8_t>(j / 3);
@@ -60,9 +62,9 @@ Expand3 expand3Indices() {
   return {load(idx[0]), load(idx[1]), load(idx[2])};
 }
 
-void scalarRow(const std::int16_t* d, std::span<const std::int16_t> thresholds,
-               std::int16_t invalid, std::uint8_t* m, const std::uint8_t* in, std::uint8_t* out,
-               int width, int channels) {
+HOROPTER_AVX2_TARGET void scalarRow(const std::int16_t* d, std::span<const std::int16_t> thresholds,
+                                    std::int16_t invalid, std::uint8_t* m, const std::uint8_t* in,
+                                    std::uint8_t* out, int width, int channels) {
   for (int x = 0; x < width; ++x) {
     const bool inside = d[x] != invalid && d[x] >= thresholds[x];
     m[x] = inside ? 255 : 0;
@@ -73,9 +75,11 @@ void scalarRow(const std::int16_t* d, std::span<const std::int16_t> thresholds,
 
 }  // namespace
 
-void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
-                  std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
-                  const ImageView& segmented, RowRange rows) {
+HOROPTER_AVX2_TARGET void horopterMask(const ConstImageView& disparity,
+                                       std::span<const std::int16_t> thresholds,
+                                       std::int16_t invalid, const ImageView& mask,
+                                       const ConstImageView& image, const ImageView& segmented,
+                                       RowRange rows) {
   const int width = disparity.width;
   const int channels = segmented.empty() ? 0 : static_cast<int>(pixelBytes(image.type));
   const __m256i invalidV = _mm256_set1_epi16(invalid);

@@ -35,6 +35,7 @@
 #include <cstring>
 #include <vector>
 
+#include "common/cpu_features.hpp"
 #include "median/median.hpp"
 
 namespace horopter::avx2 {
@@ -44,10 +45,10 @@ namespace {
 constexpr int kLanes = 16;
 constexpr std::int16_t kMax = INT16_MAX;
 
-// GCC 12 with AddressSanitizer reports false -Warray-bounds hits inside the
-// fully inlined networks (it confuses the small arrays of different merge
-// levels); the indices are compile-time and in range.
-#if defined(__SANITIZE_ADDRESS__) && defined(__GNUC__) && !defined(__clang__)
+// GCC 12 with AddressSanitizer, or at -O2 (RelWithDebInfo), reports false
+// -Warray-bounds hits inside the fully inlined networks (it confuses the small
+// arrays of different merge levels); the indices are compile-time and in range.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Warray-bounds"
 #endif
 
@@ -56,14 +57,14 @@ template <int N>
 struct Vecs {
   static constexpr int kSize = N;
   __m256i v[N > 0 ? N : 1];
-  __m256i& operator[](int i) { return v[i]; }
-  const __m256i& operator[](int i) const { return v[i]; }
+  HOROPTER_AVX2_TARGET __m256i& operator[](int i) { return v[i]; }
+  HOROPTER_AVX2_TARGET const __m256i& operator[](int i) const { return v[i]; }
 };
 
-inline __m256i load(const std::int16_t* p) {
+HOROPTER_AVX2_TARGET inline __m256i load(const std::int16_t* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
 }
-inline void store(std::int16_t* p, __m256i v) {
+HOROPTER_AVX2_TARGET inline void store(std::int16_t* p, __m256i v) {
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v);
 }
 
@@ -72,7 +73,7 @@ inline void store(std::int16_t* p, __m256i v) {
 // comparators between the two results.
 // Everything below is forced inline: the networks must become straight-line
 // code on registers, and merge outputs nobody reads must be visible as dead.
-#define HOROPTER_INLINE inline __attribute__((always_inline))
+#define HOROPTER_INLINE HOROPTER_AVX2_TARGET inline __attribute__((always_inline))
 
 template <int A, int B>
 HOROPTER_INLINE Vecs<A + B> merge(const Vecs<A>& a, const Vecs<B>& b) {
@@ -154,7 +155,7 @@ class Scratch {
  public:
   static constexpr int kH = K / 2;
 
-  Scratch(int width, int height) : width_(width), height_(height) {
+  HOROPTER_AVX2_TARGET Scratch(int width, int height) : width_(width), height_(height) {
     blocks_ = (width + kLanes - 1) / kLanes;
     // Whole 64-byte lines per scratch row, so its vector stores never split a line.
     length_ = (blocks_ * kLanes + 2 * kLanes + 31) / 32 * 32;
@@ -169,8 +170,8 @@ class Scratch {
     }
   }
 
-  void run(const ConstImageView& src, const ImageView& dst, int minValid, std::int16_t invalid,
-           RowRange rows) {
+  HOROPTER_AVX2_TARGET void run(const ConstImageView& src, const ImageView& dst, int minValid,
+                                std::int16_t invalid, RowRange rows) {
     for (int y = rows.begin; y < rows.end; ++y) {
       std::array<const std::int16_t*, K> val, flag;
       for (int j = 0; j < K; ++j) {
@@ -209,7 +210,7 @@ class Scratch {
     std::ptrdiff_t length;
     HOROPTER_INLINE std::int16_t* operator()(int i) const { return base + i * length; }
   };
-  Rows rows() { return {data_, length_}; }
+  HOROPTER_AVX2_TARGET Rows rows() { return {data_, length_}; }
 
   HOROPTER_INLINE std::int16_t* rowPtr(int i) {
     return data_ + static_cast<std::size_t>(i) * length_;
@@ -217,7 +218,7 @@ class Scratch {
 
   // values = in[x] or INT16_MAX where invalid, flags = 1 where valid; the
   // padding columns keep INT16_MAX and 0.
-  void convert(const std::int16_t* in, std::int16_t invalid, int s) {
+  HOROPTER_AVX2_TARGET void convert(const std::int16_t* in, std::int16_t invalid, int s) {
     std::int16_t* val = rowPtr(values(s)) + kH;
     std::int16_t* flag = rowPtr(flags(s)) + kH;
     if (width_ < kLanes) {
@@ -240,8 +241,8 @@ class Scratch {
     }
   }
 
-  void sortColumns(const std::array<const std::int16_t*, K>& val,
-                   const std::array<const std::int16_t*, K>& flag) {
+  HOROPTER_AVX2_TARGET void sortColumns(const std::array<const std::int16_t*, K>& val,
+                                        const std::array<const std::int16_t*, K>& flag) {
     const Rows row = rows();
     for (int c = 0; c < row.length; c += kLanes) {
       Vecs<K> v;
@@ -265,7 +266,7 @@ class Scratch {
   }
 
   // pair(c) = merge(column c, column c + 1).
-  void mergePairs() {
+  HOROPTER_AVX2_TARGET void mergePairs() {
     const Rows row = rows();
     for (int c = 0; c < row.length - kLanes; c += kLanes) {
       const Vecs<2 * K> p = merge<K, K>(loadColumn(row, c), loadColumn(row, c + 1));
@@ -302,8 +303,8 @@ class Scratch {
     return low;
   }
 
-  void outputRow(const std::int16_t* centreFlag, std::int16_t* out, int minValid,
-                 std::int16_t invalid) {
+  HOROPTER_AVX2_TARGET void outputRow(const std::int16_t* centreFlag, std::int16_t* out,
+                                      int minValid, std::int16_t invalid) {
     const Rows row = rows();
     const int width = width_;
     const int blocks = blocks_;
@@ -350,8 +351,9 @@ class Scratch {
 
 }  // namespace
 
-void medianFilter(const ConstImageView& src, const ImageView& dst, int kernelSize, int minValid,
-                  std::int16_t invalid, RowRange rows) {
+HOROPTER_AVX2_TARGET void medianFilter(const ConstImageView& src, const ImageView& dst,
+                                       int kernelSize, int minValid, std::int16_t invalid,
+                                       RowRange rows) {
   if (rows.begin >= rows.end) return;
   if (kernelSize == 3) {
     Scratch<3>(src.width, src.height).run(src, dst, minValid, invalid, rows);

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "common/cpu_features.hpp"
 #include "occlusion/occlusion.hpp"
 
 namespace horopter::avx2 {
@@ -28,8 +29,8 @@ namespace {
 
 constexpr int kStep = 8;
 
-void scalarRow(std::int16_t* d, const std::int16_t* wr, int width, std::int16_t invalid,
-               int noWinner, int maxDiff) {
+HOROPTER_AVX2_TARGET void scalarRow(std::int16_t* d, const std::int16_t* wr, int width,
+                                    std::int16_t invalid, int noWinner, int maxDiff) {
   for (int x = 0; x < width; ++x) {
     if (d[x] == invalid) continue;
     const int dl = (d[x] + 8) >> 4;
@@ -41,8 +42,9 @@ void scalarRow(std::int16_t* d, const std::int16_t* wr, int width, std::int16_t 
 
 }  // namespace
 
-void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
-                    const StereoParams& params, RowRange rows) {
+HOROPTER_AVX2_TARGET void leftRightCheck(const ImageView& disparity,
+                                         const ConstImageView& winnerRight,
+                                         const StereoParams& params, RowRange rows) {
   if (params.disp12MaxDiff < 0) return;
   const std::int16_t invalid = invalidDisparity(params);
   const int noWinner = params.minDisparity - 1;

@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/cpu_features.hpp"
 #include "occlusion/occlusion.hpp"
 
 namespace horopter::avx2 {
@@ -57,26 +58,26 @@ struct Scratch {
 };
 
 template <typename T>
-void growTo(std::vector<T>& v, std::size_t n) {
+HOROPTER_AVX2_TARGET void growTo(std::vector<T>& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
 // All lanes where |a - b| <= range (range as unsigned 16 bits).
-inline __m256i closeEnough(__m256i a, __m256i b, __m256i range) {
+HOROPTER_AVX2_TARGET inline __m256i closeEnough(__m256i a, __m256i b, __m256i range) {
   const __m256i diff = _mm256_sub_epi16(_mm256_max_epi16(a, b), _mm256_min_epi16(a, b));
   return _mm256_cmpeq_epi16(_mm256_min_epu16(diff, range), diff);
 }
 
 // One bit per 16-bit lane of two all-or-nothing masks, pixel order.
-inline std::uint32_t laneBits(__m256i lo, __m256i hi) {
+HOROPTER_AVX2_TARGET inline std::uint32_t laneBits(__m256i lo, __m256i hi) {
   const __m256i packed = _mm256_permute4x64_epi64(_mm256_packs_epi16(lo, hi), 0xD8);
   return static_cast<std::uint32_t>(_mm256_movemask_epi8(packed));
 }
 
 // Bits of 32 pixels starting at x of padded rows (x - 1 is readable).
-inline void rowBits(const std::int16_t* cur, const std::int16_t* up, int x, __m256i invalid,
-                    __m256i range, std::uint32_t& valid, std::uint32_t& joinLeft,
-                    std::uint32_t& joinUp) {
+HOROPTER_AVX2_TARGET inline void rowBits(const std::int16_t* cur, const std::int16_t* up, int x,
+                                         __m256i invalid, __m256i range, std::uint32_t& valid,
+                                         std::uint32_t& joinLeft, std::uint32_t& joinUp) {
   __m256i bad[2], left[2], above[2];
   for (int h = 0; h < 2; ++h) {
     const int at = x + 16 * h;
@@ -96,7 +97,7 @@ inline void rowBits(const std::int16_t* cur, const std::int16_t* up, int x, __m2
 }
 
 // First set bit at or after x in the words, or words * 64 when none.
-inline int nextSetBit(const std::uint64_t* bits, int words, int x) {
+HOROPTER_AVX2_TARGET inline int nextSetBit(const std::uint64_t* bits, int words, int x) {
   int w = x / kWordBits;
   if (w >= words) return words * kWordBits;
   std::uint64_t m = bits[w] & (~std::uint64_t{0} << (x % kWordBits));
@@ -108,14 +109,15 @@ inline int nextSetBit(const std::uint64_t* bits, int words, int x) {
 }
 
 // The run holding pixel x of a row: its row's runs that start at or before x, less one.
-inline std::int32_t runAt(const std::uint64_t* starts, const std::int32_t* before,
-                          std::int32_t rowFirst, int x) {
+HOROPTER_AVX2_TARGET inline std::int32_t runAt(const std::uint64_t* starts,
+                                               const std::int32_t* before, std::int32_t rowFirst,
+                                               int x) {
   const int w = x / kWordBits;
   const auto upToX = _bzhi_u64(starts[w], static_cast<unsigned>(x % kWordBits) + 1);
   return rowFirst + before[w] + static_cast<std::int32_t>(_mm_popcnt_u64(upToX)) - 1;
 }
 
-inline std::int32_t findRoot(std::int32_t* parent, std::int32_t a) {
+HOROPTER_AVX2_TARGET inline std::int32_t findRoot(std::int32_t* parent, std::int32_t a) {
   while (parent[a] != a) {
     parent[a] = parent[parent[a]];  // path halving
     a = parent[a];
@@ -123,7 +125,7 @@ inline std::int32_t findRoot(std::int32_t* parent, std::int32_t a) {
   return a;
 }
 
-inline void unite(std::int32_t* parent, std::int32_t a, std::int32_t b) {
+HOROPTER_AVX2_TARGET inline void unite(std::int32_t* parent, std::int32_t a, std::int32_t b) {
   a = findRoot(parent, a);
   b = findRoot(parent, b);
   if (a < b) {
@@ -135,7 +137,7 @@ inline void unite(std::int32_t* parent, std::int32_t a, std::int32_t b) {
 
 }  // namespace
 
-void filterSpeckles(const ImageView& disparity, const StereoParams& params) {
+HOROPTER_AVX2_TARGET void filterSpeckles(const ImageView& disparity, const StereoParams& params) {
   if (params.speckleWindowSize == 0) return;
   const int width = disparity.width;
   const int height = disparity.height;

@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "horopter/error.hpp"
-#include "occlusion/occlusion.hpp"
+#include "opencl/cpu_speckles.hpp"
 #include "opencl/device.hpp"
 #include "opencl/launch.hpp"
 #include "opencl/opencl_backend.hpp"
@@ -15,15 +15,6 @@ namespace horopter::opencl {
 namespace {
 
 std::atomic<bool> g_failEnqueue{false};
-
-bool cpuHasAvx2() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-#else
-  return false;
-#endif
-}
 
 double eventMs(cl_event e) {
   cl_ulong start = 0, end = 0;
@@ -164,13 +155,9 @@ void Pipeline::wait(int index, std::vector<OpenClStageTime>& times) {
   if (s.stereo.speckleWindowSize == 0) return;
 
   const auto start = std::chrono::steady_clock::now();
-  static const bool avx2 = cpuHasAvx2();
-  if (avx2)
-    avx2::filterSpeckles(slot.clean.view(), s.stereo);
-  else
-    scalar::filterSpeckles(slot.clean.view(), s.stereo);
+  const Backend& cpu = filterSpecklesOnCpu(slot.clean.view(), s.stereo);
   times.push_back(
-      {"speckle filter (CPU)",
+      {"speckle filter (CPU, " + cpu.name + ")",
        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
        false});
   const int w = slot.width, h = slot.height;

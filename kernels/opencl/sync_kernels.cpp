@@ -6,7 +6,7 @@
 #include <mutex>
 
 #include "horopter/error.hpp"
-#include "occlusion/occlusion.hpp"
+#include "opencl/cpu_speckles.hpp"
 #include "opencl/device.hpp"
 #include "opencl/launch.hpp"
 
@@ -110,22 +110,9 @@ void leftRight(int index, const ImageView& disparity, const ConstImageView& winn
   readRows(call.queue(), d, disparity, rows.begin, rows.end, true, nullptr);
 }
 
-bool cpuHasAvx2() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-#else
-  return false;
-#endif
-}
-
 // On the CPU: the blob labelling is sequential across the whole frame.
 void speckles(const ImageView& disparity, const StereoParams& params) {
-  static const bool avx2 = cpuHasAvx2();
-  if (avx2)
-    avx2::filterSpeckles(disparity, params);
-  else
-    scalar::filterSpeckles(disparity, params);
+  filterSpecklesOnCpu(disparity, params);
 }
 
 void median(int index, const ConstImageView& src, const ImageView& dst, int kernelSize,

@@ -2,7 +2,7 @@
 // rows it reads, runs the kernel and downloads the rows it writes before it
 // returns. Calls on one device are serialised (one queue, one set of
 // cl_kernel objects and buffers per device); the speckle filter runs on the
-// CPU (AVX2 where the CPU has it), as it joins pixels across the whole frame.
+// CPU (opencl/cpu_speckles.hpp), as it joins pixels across the whole frame.
 #pragma once
 
 #include "horopter/backend.hpp"

@@ -17,16 +17,17 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "common/cpu_features.hpp"
 #include "prefilter/prefilter.hpp"
 
 namespace horopter::avx2 {
 
 namespace {
 
-// A private copy of the reference's row reflection: a shared inline function
-// compiled here with AVX2 flags could be the copy the linker keeps for the
-// scalar callers too, and fault on a CPU without AVX2.
-int reflect101(int y, int height) {
+// A private copy of the reference's row reflection (from when this file was
+// compiled with -mavx2, and a shared inline function could have become the
+// copy the linker keeps for the scalar callers too).
+HOROPTER_AVX2_TARGET int reflect101(int y, int height) {
   if (height == 1) return 0;
   if (y < 0) return -y;
   if (y >= height) return 2 * height - 2 - y;
@@ -35,12 +36,16 @@ int reflect101(int y, int height) {
 
 constexpr int kStep = 32;
 
+// 16 bytes widened to 16-bit lanes. (Not a lambda: a capture-less lambda's
+// function-pointer thunk would not carry the target attribute.)
+HOROPTER_AVX2_TARGET inline __m256i widen(const std::uint8_t* p) {
+  return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+
 // Sobel of 16 pixels starting at x (reads x-1 .. x+16 of each row), clamped.
-inline __m256i sobel16(const std::uint8_t* above, const std::uint8_t* here,
-                       const std::uint8_t* below, int x, __m256i lo, __m256i hi) {
-  auto widen = [](const std::uint8_t* p) {
-    return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-  };
+HOROPTER_AVX2_TARGET inline __m256i sobel16(const std::uint8_t* above, const std::uint8_t* here,
+                                            const std::uint8_t* below, int x, __m256i lo,
+                                            __m256i hi) {
   const __m256i a = _mm256_sub_epi16(widen(above + x + 1), widen(above + x - 1));
   const __m256i h = _mm256_sub_epi16(widen(here + x + 1), widen(here + x - 1));
   const __m256i b = _mm256_sub_epi16(widen(below + x + 1), widen(below + x - 1));
@@ -49,12 +54,13 @@ inline __m256i sobel16(const std::uint8_t* above, const std::uint8_t* here,
 }
 
 // Packs two vectors of 16 values in 0..255 into 32 bytes in pixel order.
-inline __m256i packBytes(__m256i first, __m256i second) {
+HOROPTER_AVX2_TARGET inline __m256i packBytes(__m256i first, __m256i second) {
   return _mm256_permute4x64_epi64(_mm256_packus_epi16(first, second), 0xD8);
 }
 
-void scalarPixel(const std::uint8_t* above, const std::uint8_t* here, const std::uint8_t* below,
-                 int x, int width, int cap, std::uint8_t* outFiltered, std::uint8_t* outTexture) {
+HOROPTER_AVX2_TARGET void scalarPixel(const std::uint8_t* above, const std::uint8_t* here,
+                                      const std::uint8_t* below, int x, int width, int cap,
+                                      std::uint8_t* outFiltered, std::uint8_t* outTexture) {
   int sobel = 0;
   if (x > 0 && x < width - 1) {
     sobel = (above[x + 1] - above[x - 1]) + 2 * (here[x + 1] - here[x - 1]) +
@@ -67,8 +73,9 @@ void scalarPixel(const std::uint8_t* above, const std::uint8_t* here, const std:
 
 }  // namespace
 
-void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
-                     const ImageView& texture, RowRange rows) {
+HOROPTER_AVX2_TARGET void prefilterXSobel(const ConstImageView& src, int cap,
+                                          const ImageView& filtered, const ImageView& texture,
+                                          RowRange rows) {
   const int width = src.width;
   const int height = src.height;
   const __m256i lo = _mm256_set1_epi16(static_cast<std::int16_t>(-cap));

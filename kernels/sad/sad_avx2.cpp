@@ -72,6 +72,7 @@
 #include <new>
 #include <type_traits>
 
+#include "common/cpu_features.hpp"
 #include "sad/sad.hpp"
 
 namespace horopter::avx2 {
@@ -86,7 +87,7 @@ constexpr std::int16_t kNoCost = 0x7FFF;  // 65535 biased: above every real cost
 template <typename T>
 class AlignedArray {
  public:
-  explicit AlignedArray(std::size_t n)
+  HOROPTER_AVX2_TARGET explicit AlignedArray(std::size_t n)
       : data_(static_cast<T*>(
             ::operator new[](std::max<std::size_t>(n, 1) * sizeof(T), std::align_val_t{64}))) {
     std::fill_n(data_, n, T{});
@@ -100,32 +101,32 @@ class AlignedArray {
   T* data_;
 };
 
-inline __m256i load(const std::int16_t* p) {
+HOROPTER_AVX2_TARGET inline __m256i load(const std::int16_t* p) {
   return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
 }
-inline void store(std::int16_t* p, __m256i v) {
+HOROPTER_AVX2_TARGET inline void store(std::int16_t* p, __m256i v) {
   _mm256_store_si256(reinterpret_cast<__m256i*>(p), v);
 }
-inline __m256i loadu(const std::uint8_t* p) {
+HOROPTER_AVX2_TARGET inline __m256i loadu(const std::uint8_t* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
 }
-inline __m128i loadu128(const std::uint8_t* p) {
+HOROPTER_AVX2_TARGET inline __m128i loadu128(const std::uint8_t* p) {
   return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
 }
 // 16 bytes widened to 16-bit lanes.
-inline __m256i widen(const std::uint8_t* p) {
+HOROPTER_AVX2_TARGET inline __m256i widen(const std::uint8_t* p) {
   return _mm256_cvtepu8_epi16(loadu128(p));
 }
 // |a - b| per byte.
-inline __m256i absDiff8(__m256i a, __m256i b) {
+HOROPTER_AVX2_TARGET inline __m256i absDiff8(__m256i a, __m256i b) {
   return _mm256_or_si256(_mm256_subs_epu8(a, b), _mm256_subs_epu8(b, a));
 }
-inline __m256i load8x32(const int* p) {
+HOROPTER_AVX2_TARGET inline __m256i load8x32(const int* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
 }
 
 // min and max byte of rows [y0, y1) of a U8C1 view, folded into lo and hi.
-void scanRange(const ConstImageView& view, int y0, int y1, int& lo, int& hi) {
+HOROPTER_AVX2_TARGET void scanRange(const ConstImageView& view, int y0, int y1, int& lo, int& hi) {
   __m256i vmin = _mm256_set1_epi8(-1), vmax = _mm256_setzero_si256();
   for (int y = y0; y < y1; ++y) {
     const auto* p = view.row<std::uint8_t>(y);
@@ -150,7 +151,7 @@ void scanRange(const ConstImageView& view, int y0, int y1, int& lo, int& hi) {
 }
 
 // dst[i] = src[width - 1 - i] for i in [0, width).
-void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
+HOROPTER_AVX2_TARGET void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
   const __m256i flip = _mm256_setr_epi8(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0, 15,
                                         14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
   int i = 0;
@@ -165,7 +166,7 @@ void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
 // Transposes 16 vectors of 16 lanes: t[k] lane j = v[j] lane k. Each half of
 // 8 rows takes the classic three unpack stages within 128-bit lanes (an 8x8
 // transpose per lane); a 128-bit lane exchange joins the halves.
-[[gnu::always_inline]] inline void transpose16(const __m256i* v, __m256i* t) {
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void transpose16(const __m256i* v, __m256i* t) {
   __m256i w[2][8];
   for (int h = 0; h < 2; ++h) {
     const __m256i* r = v + 8 * h;
@@ -195,7 +196,7 @@ void reverseRow(const std::uint8_t* src, int width, std::uint8_t* dst) {
 // division: (n + 0.5) / 100 lies at least 0.005 from an integer, and
 // (n + 0.5) * 0.01 in double is within 2^-26 of it, so truncating it gives
 // floor(n / 100).
-inline __m256i divideBy100(__m256i n) {
+HOROPTER_AVX2_TARGET inline __m256i divideBy100(__m256i n) {
   const __m256d half = _mm256_set1_pd(0.5), hundredth = _mm256_set1_pd(0.01);
   const __m128i lo = _mm256_cvttpd_epi32(
       _mm256_mul_pd(_mm256_add_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(n)), half), hundredth));
@@ -213,28 +214,30 @@ inline __m256i divideBy100(__m256i n) {
 // cleared), so ties go to the smallest k. The caller adds the key's low
 // bits (k mod G) to the index.
 template <int kShift, int kBlocks>
-[[gnu::always_inline]] inline void leastKeys(const std::int16_t* c, std::ptrdiff_t step, int count,
-                                             const std::int16_t* indexOf, __m256i* best,
-                                             __m256i* index) {
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void leastKeys(const std::int16_t* c,
+                                                                  std::ptrdiff_t step, int count,
+                                                                  const std::int16_t* indexOf,
+                                                                  __m256i* best, __m256i* index) {
   constexpr int kGroup = 1 << kShift;
-  const auto groupMin = [&](const std::int16_t* p) {
+  const auto groupMin = [&](const std::int16_t* p) HOROPTER_AVX2_TARGET {
     __m256i m = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
     for (int j = 1; j < kGroup; ++j)
       m = _mm256_min_epi16(m, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + j * step)));
     return m;
   };
   const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~(kGroup - 1)));
-  const auto merge = [&](__m256i& bestN, __m256i& indexN, __m256i now, __m256i indexK) {
-    __m256i better;
-    if constexpr (kGroup == 1) {
-      better = _mm256_cmpgt_epi16(bestN, now);
-      bestN = _mm256_min_epi16(bestN, now);
-    } else {
-      better = _mm256_cmpgt_epi16(_mm256_and_si256(bestN, high), now);
-      bestN = _mm256_blendv_epi8(bestN, now, better);
-    }
-    indexN = _mm256_blendv_epi8(indexN, indexK, better);
-  };
+  const auto merge = [&](__m256i& bestN, __m256i& indexN, __m256i now, __m256i indexK)
+                         HOROPTER_AVX2_TARGET {
+                           __m256i better;
+                           if constexpr (kGroup == 1) {
+                             better = _mm256_cmpgt_epi16(bestN, now);
+                             bestN = _mm256_min_epi16(bestN, now);
+                           } else {
+                             better = _mm256_cmpgt_epi16(_mm256_and_si256(bestN, high), now);
+                             bestN = _mm256_blendv_epi8(bestN, now, better);
+                           }
+                           indexN = _mm256_blendv_epi8(indexN, indexK, better);
+                         };
   // Named accumulators, not arrays: with arrays GCC copies every one at
   // every step.
   static_assert(kBlocks == 4);
@@ -267,9 +270,10 @@ class Matcher {
   static constexpr int kMaxGroups = 1024 / kLanes;  // numDisparities <= 1024
 
  public:
-  Matcher(const ConstImageView& left, const ConstImageView& right, const ConstImageView& texture,
-          const StereoParams& params, const ImageView& disparity, const ImageView& winnerRight,
-          const MatchRegion& region, int keyShift)
+  HOROPTER_AVX2_TARGET Matcher(const ConstImageView& left, const ConstImageView& right,
+                               const ConstImageView& texture, const StereoParams& params,
+                               const ImageView& disparity, const ImageView& winnerRight,
+                               const MatchRegion& region, int keyShift)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -315,7 +319,7 @@ class Matcher {
     }
   }
 
-  void run(int y0, int y1) {
+  HOROPTER_AVX2_TARGET void run(int y0, int y1) {
     for (int j = y0 - r_; j <= y0 + r_; ++j)
       accumulateRow(j);
     rowPass<false>(y0);
@@ -329,19 +333,21 @@ class Matcher {
 
  private:
   // Column sums of group g (lanes d = minD + 16g ..), column x.
-  std::int16_t* column(int g, int x) const {
+  HOROPTER_AVX2_TARGET std::int16_t* column(int g, int x) const {
     return columnSum_.get() + (static_cast<std::size_t>(g) * cols_ + (x - xa_ + 1)) * kLanes;
   }
-  std::uint16_t* columnTexture(int x) const { return columnTexture_.get() + (x - xa_ + 1); }
+  HOROPTER_AVX2_TARGET std::uint16_t* columnTexture(int x) const {
+    return columnTexture_.get() + (x - xa_ + 1);
+  }
   // Offset in a reversed right row of disparity minD for left column x.
-  int reversedBase(int x) const { return width_ - 1 - x + minD_; }
+  HOROPTER_AVX2_TARGET int reversedBase(int x) const { return width_ - 1 - x + minD_; }
   // Window costs of lane k (-1 ..= count) for pixels i = x - x0 from 0, biased.
-  std::int16_t* costs(int k) const {
+  HOROPTER_AVX2_TARGET std::int16_t* costs(int k) const {
     return costs_.get() + static_cast<std::size_t>(k + 1) * rowLen_ + edge_;
   }
 
   // Adds row j's |L - R| to every column sum (and T to the texture sums).
-  void accumulateRow(int j) {
+  HOROPTER_AVX2_TARGET void accumulateRow(int j) {
     const auto* l = left_.row<std::uint8_t>(j);
     reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn_.get());
     const int pairs = groups_ / 2;
@@ -378,7 +384,7 @@ class Matcher {
   }
 
   // Texture column sums: add row `in`, drop row `out`.
-  void slideTexture(int in, int out) {
+  HOROPTER_AVX2_TARGET void slideTexture(int in, int out) {
     const auto* tIn = texture_.row<std::uint8_t>(in);
     const auto* tOut = texture_.row<std::uint8_t>(out);
     int x = xa_;
@@ -410,7 +416,7 @@ class Matcher {
   // tile, then its left decisions, then the right winners whose costs are
   // all in; the tile's costs are still in cache when the decisions read them.
   template <bool kSlide>
-  void rowPass(int y) {
+  HOROPTER_AVX2_TARGET void rowPass(int y) {
     const auto* lIn = left_.row<std::uint8_t>(kSlide ? y + r_ : y);
     const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
     const int pairs = groups_ / 2;
@@ -472,7 +478,7 @@ class Matcher {
       for (int p = 0; p < pairs; ++p)
         sweepPair<kSlide>(p, state[p], i0, i1);
       if (odd) sweepLast<kSlide>(state[pairs], i0, i1);
-      const auto decide = [&](auto shift) {
+      const auto decide = [&](auto shift) HOROPTER_AVX2_TARGET {
         constexpr int kShift = decltype(shift)::value;
         decideLeft<kShift>(outDisparity, i0, i1);
         // Right pixel xr reads pixels up to xr + maxD - x0: those of the
@@ -505,7 +511,7 @@ class Matcher {
   // every 16 pixels, their 16 cost vectors are transposed in registers and
   // stored by lane.
   template <bool kSlide>
-  void sweepLast(SweepState& s, int i0, int i1) {
+  HOROPTER_AVX2_TARGET void sweepLast(SweepState& s, int i0, int i1) {
     const int g = groups_ - 1, pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
     std::int16_t* col = s.colA;
@@ -517,7 +523,7 @@ class Matcher {
     __m256i cost = s.costA;
     const __m128i shift = _mm_cvtsi32_si128(keyShift_);
     // One column: slide it, add it, drop `drop`; on to the next column.
-    const auto step = [&](bool moveDrop) {
+    const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i c = load(col);
       if constexpr (kSlide) {
         const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(load(li), widen(ri)));
@@ -568,7 +574,7 @@ class Matcher {
   // group 2p + 1's d = 32p + (8..15, 24..31); the stores after the
   // transposes undo that.
   template <bool kSlide>
-  void sweepPair(int p, SweepState& s, int i0, int i1) {
+  HOROPTER_AVX2_TARGET void sweepPair(int p, SweepState& s, int i0, int i1) {
     const int pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
     std::int16_t* colA = s.colA;
@@ -585,7 +591,7 @@ class Matcher {
         _mm256_set1_epi16(static_cast<std::int16_t>((256 - unit) << 8 | unit));
     __m256i costA = s.costA;
     __m256i costB = s.costB;
-    const auto step = [&](bool moveDrop) {
+    const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i cA = load(colA), cB = load(colB);
       if constexpr (kSlide) {
         const __m256i in = absDiff8(_mm256_set1_epi8(static_cast<char>(*li)), loadu(ri));
@@ -661,7 +667,7 @@ class Matcher {
   //   -1 and count hold "no cost", above any limit). Then finishLeft, from
   //   the registers. Pixels [from, to): from is a multiple of 64.
   template <int kShift>
-  void decideLeft(std::int16_t* outDisparity, int from, int to) const {
+  HOROPTER_AVX2_TARGET void decideLeft(std::int16_t* outDisparity, int from, int to) const {
     const int ratio = params_.uniquenessRatio;
     const __m256i lowBits32 = _mm256_set1_epi32((1 << kShift) - 1);
     const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
@@ -734,8 +740,8 @@ class Matcher {
   // (limit: saturated at 65535; within: lanes with cost <= limit) and the
   // sub-pixel step.
   template <int kShift>
-  void finishLeft(__m256i bestKey, __m256i lane, __m256i limit, __m256i within, int i, int valid,
-                  std::int16_t* out) const {
+  HOROPTER_AVX2_TARGET void finishLeft(__m256i bestKey, __m256i lane, __m256i limit, __m256i within,
+                                       int i, int valid, std::int16_t* out) const {
     const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
     const __m256i ones = _mm256_set1_epi16(-1);
     const __m256i zero = _mm256_setzero_si256();
@@ -755,7 +761,7 @@ class Matcher {
     const __m256i low16 = _mm256_set1_epi32(0xFFFF);
     // The cost of the entries at row `row` (relative to row 0) and the
     // offsets; "no cost" stays 65535.
-    const auto neighbourCosts = [&](const std::int16_t* row) {
+    const auto neighbourCosts = [&](const std::int16_t* row) HOROPTER_AVX2_TARGET {
       const auto* p = reinterpret_cast<const int*>(row);
       const __m256i lo = _mm256_and_si256(_mm256_i32gather_epi32(p, offLo, 2), low16);
       const __m256i hi = _mm256_and_si256(_mm256_i32gather_epi32(p, offHi, 2), low16);
@@ -777,7 +783,7 @@ class Matcher {
     }
     if (params_.uniquenessRatio > 0) {
       // x <= limit, unsigned.
-      const auto atMost = [&](__m256i x) {
+      const auto atMost = [&](__m256i x) HOROPTER_AVX2_TARGET {
         return _mm256_cmpeq_epi16(_mm256_max_epu16(x, limit), limit);
       };
       // 1 + [below <= limit] + [above <= limit]; a limit of 65535 or more
@@ -799,7 +805,8 @@ class Matcher {
     // |128 (cm - cp)| < 2^23 and 0 < spread < 2^16, so the rounded quotient
     // (<= 128, error under 2^-18) cannot cross an integer (at least 1/spread
     // away unless it is one).
-    const auto half = [&](__m128i cm8, __m128i cp8, __m128i spread8, __m128i b8) {
+    const auto half = [&](__m128i cm8, __m128i cp8, __m128i spread8,
+                          __m128i b8) HOROPTER_AVX2_TARGET {
       const __m256i s = _mm256_cvtepu16_epi32(spread8);
       const __m256i num = _mm256_slli_epi32(
           _mm256_sub_epi32(_mm256_cvtepu16_epi32(cm8), _mm256_cvtepu16_epi32(cp8)), 7);
@@ -833,7 +840,7 @@ class Matcher {
   // key (leastKeys) keeps the smallest d on ties; entries outside the
   // region's pixels are "no cost", and every xr written has a real one.
   template <int kShift>
-  void decideRight(std::int16_t* outWinner, int xr0, int xrHigh) const {
+  HOROPTER_AVX2_TARGET void decideRight(std::int16_t* outWinner, int xr0, int xrHigh) const {
     constexpr int kBlocks = kChunk / kLanes;  // blocks of 16 right pixels per pass
     __m256i best[kBlocks], d[kBlocks];
     leastKeys<kShift, kBlocks>(costs(0) + (xr0 + minD_ - x0_), rowLen_ + 1, count_,
@@ -879,9 +886,10 @@ class Matcher {
 
 }  // namespace
 
-void matchBlocks(const ConstImageView& left, const ConstImageView& right,
-                 const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows) {
+HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                                      const ConstImageView& texture, const StereoParams& params,
+                                      const ImageView& disparity, const ImageView& winnerRight,
+                                      RowRange rows) {
   const int width = left.width;
   const int r = params.blockSize / 2;
   const std::int16_t invalid = invalidDisparity(params);

@@ -1,5 +1,8 @@
-# Installs the build into WORK_DIR/prefix, then builds and runs two consumers
-# against the installed tree only:
+# Installs the build into WORK_DIR/prefix, then builds and runs three
+# consumers against the installed tree only:
+#  - README.md's find_package block, copied as written into a CMakeLists.txt
+#    beside readme_consumer/app.cpp (it sets no C++ standard: the imported
+#    target must carry C++20);
 #  - examples/cpp (find_package(horopter), target horopter::horopter): embed
 #    and embed_c;
 #  - examples/cpp/embed_c.c compiled by hand with `pkg-config --cflags --libs horopter`.
@@ -30,11 +33,27 @@ if(NOT configs OR NOT pcs)
   message(FATAL_ERROR "the install tree lacks horopterConfig.cmake or horopter.pc")
 endif()
 
-# The consumer project sees only the install tree.
-run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/cpp" -B "${WORK_DIR}/build" -G "${GENERATOR}"
-    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}"
+# The consumer projects see only the install tree.
+set(consumer_flags "-DCMAKE_BUILD_TYPE=Release" "-DCMAKE_PREFIX_PATH=${prefix}"
     "-DCMAKE_CXX_FLAGS=${EXTRA_FLAGS}" "-DCMAKE_C_FLAGS=${EXTRA_FLAGS}"
     "-DCMAKE_EXE_LINKER_FLAGS=${EXTRA_FLAGS}")
+
+# README.md: the ```cmake block that calls find_package(horopter), verbatim.
+file(READ "${SOURCE_DIR}/README.md" readme)
+string(REGEX MATCH "```cmake\n([^`]*find_package\\(horopter[^`]*)```" block "${readme}")
+if(NOT block)
+  message(FATAL_ERROR "README.md has no ```cmake block with find_package(horopter)")
+endif()
+set(readme_dir "${WORK_DIR}/readme_consumer")
+file(WRITE "${readme_dir}/CMakeLists.txt" "${CMAKE_MATCH_1}")
+file(COPY "${SOURCE_DIR}/tests/bindings/readme_consumer/app.cpp" DESTINATION "${readme_dir}")
+message(STATUS "README's consumer:\n${CMAKE_MATCH_1}")
+run(${CMAKE_COMMAND} -S "${readme_dir}" -B "${readme_dir}/build" -G "${GENERATOR}" ${consumer_flags})
+run(${CMAKE_COMMAND} --build "${readme_dir}/build")
+run("${readme_dir}/build/app")
+
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/cpp" -B "${WORK_DIR}/build" -G "${GENERATOR}"
+    ${consumer_flags})
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/embed" --frames 2)
 if(NOT last_output MATCHES "inside the zone")
