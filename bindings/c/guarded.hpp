@@ -11,6 +11,9 @@
 #include "horopter/horopter.h"
 #include "horopter/stereo_params.hpp"
 
+// Shared by the C API's files, exported by none (libhoropter.map exports
+// the horopter namespace; these helpers are not its API).
+#pragma GCC visibility push(hidden)
 namespace horopter::c_api {
 
 inline thread_local std::string tLastError;
@@ -56,3 +59,4 @@ void requireNonNull(const T* p, const char* what) {
 void paramsOf(const horopter_stereo_params& c, StereoParams& s, MedianParams& m);
 
 }  // namespace horopter::c_api
+#pragma GCC visibility pop

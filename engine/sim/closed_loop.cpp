@@ -93,7 +93,6 @@ bool ClosedLoopSyntheticSource::next(Frame& frame) {
   return true;
 }
 
-
 CapturePose syntheticCapturePose() {
   return [](const Frame& f) -> std::optional<hw::HeadAngles> {
     const auto* t = std::any_cast<synth::FrameTruth>(&f.truth);

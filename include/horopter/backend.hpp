@@ -2,6 +2,8 @@
 // reference, later AVX2 and OpenCL), chosen by name at setup.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstdint>
 #include <span>
 #include <string>
@@ -15,7 +17,7 @@ namespace horopter {
 // The rows [begin, end) of the output that one kernel call writes. Inputs may
 // be read outside them (a window's halo), so a frame split into stripes gives
 // the same result as the whole frame. `all()` (end < 0) means every row.
-struct RowRange {
+struct HOROPTER_API RowRange {
   int begin = 0;
   int end = -1;
   static constexpr RowRange all() { return {0, -1}; }
@@ -26,7 +28,7 @@ struct RowRange {
 // validated by the public entry points in kernels.hpp (a RowRange reaches them
 // resolved: 0 <= begin <= end <= height); every backend must give the scalar
 // reference's result bit for bit, for any row range.
-struct KernelTable {
+struct HOROPTER_API KernelTable {
   void (*prefilterXSobel)(const ConstImageView& src, int cap, const ImageView& filtered,
                           const ImageView& texture, RowRange rows);
   void (*matchBlocks)(const ConstImageView& left, const ConstImageView& right,
@@ -42,7 +44,7 @@ struct KernelTable {
                        const ImageView& segmented, RowRange rows);
 };
 
-struct Backend {
+struct HOROPTER_API Backend {
   std::string name;         // "scalar", "avx2", "opencl:0:0"...
   std::string description;  // one line for `horopter devices`
   bool available = false;
@@ -51,14 +53,14 @@ struct Backend {
 };
 
 // Every backend this build knows, available on this machine or not, best last.
-const std::vector<const Backend*>& registeredBackends();
+HOROPTER_API const std::vector<const Backend*>& registeredBackends();
 
 // The scalar reference: always available; the specification of every kernel.
-const Backend& scalarBackend();
+HOROPTER_API const Backend& scalarBackend();
 
 // Finds a backend by name. "auto" picks the best available one, unless the
 // environment variable HOROPTER_BACKEND names one. Throws horopter::Error for
 // an unknown name (listing the known ones) or an unavailable backend (with why).
-const Backend& findBackend(const std::string& name);
+HOROPTER_API const Backend& findBackend(const std::string& name);
 
 }  // namespace horopter

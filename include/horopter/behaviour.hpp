@@ -15,6 +15,8 @@
 // always, at once.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <optional>
 #include <vector>
 
@@ -25,7 +27,7 @@
 
 namespace horopter {
 
-struct BehaviourOptions {
+struct HOROPTER_API BehaviourOptions {
   double cooldownS = 1.5;         // after an action ends, new decisions are ignored this long
   double turnSpeedRadPerS = 0.8;  // base, turning on the spot
   double driveSpeedMps = 0.15;    // base, forward
@@ -37,9 +39,9 @@ struct BehaviourOptions {
 };
 
 // Table II.
-RobotAction actionFor(MovementClass movement);
+HOROPTER_API RobotAction actionFor(MovementClass movement);
 
-class Behaviour {
+class HOROPTER_API Behaviour {
  public:
   explicit Behaviour(BehaviourOptions options = {});  // throws horopter::Error for bad options
 

@@ -4,6 +4,8 @@
 // file holds, one sample per frame.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -12,7 +14,7 @@
 namespace horopter {
 
 // One tracked body part.
-struct PartState {
+struct HOROPTER_API PartState {
   bool tracked = false;   // a track exists this frame (it may be coasting)
   bool observed = false;  // a detection updated the track this frame
   cv::Point2f image;      // left rectified image, pixels
@@ -23,7 +25,7 @@ struct PartState {
 
 // Left and right are the person's own (the person faces the robot, so their
 // left hand appears on the image's right side).
-struct BodySample {
+struct HOROPTER_API BodySample {
   std::int64_t frame = 0;
   double timeS = 0;        // seconds since the start of the run
   bool godfather = false;  // a godfather is elected; the parts below are theirs

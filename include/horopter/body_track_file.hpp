@@ -10,6 +10,8 @@
 // the movement being performed (movementClassName), when it is known.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <string>
 #include <vector>
 
@@ -19,11 +21,11 @@
 namespace horopter {
 
 // `truth`: empty, or one movement per sample (written as the truth column).
-void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples,
-                    const std::vector<MovementClass>& truth = {});
+HOROPTER_API void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samples,
+                                 const std::vector<MovementClass>& truth = {});
 // Throws horopter::Error naming the file and line for a malformed file.
 // `truth` (if given) receives the truth column, empty when the file has none.
-std::vector<BodySample> readBodyTrack(const std::string& path,
-                                      std::vector<MovementClass>* truth = nullptr);
+HOROPTER_API std::vector<BodySample> readBodyTrack(const std::string& path,
+                                                   std::vector<MovementClass>* truth = nullptr);
 
 }  // namespace horopter

@@ -9,6 +9,8 @@
 // and a left pixel (u, v) with disparity d matches the right pixel (u - d, v).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <functional>
 #include <opencv2/core.hpp>
 #include <string>
@@ -19,15 +21,15 @@
 namespace horopter {
 
 // A chessboard by its inner corners (9x6 for OpenCV's sample views).
-struct BoardSpec {
+struct HOROPTER_API BoardSpec {
   cv::Size innerCorners;    // corners per row (width) and per column (height), each >= 2
   double squareSize = 0.0;  // side of one square, in the length unit of the results (> 0)
 };
 
 // "9x6" -> {9, 6}. Throws horopter::Error naming the expected form.
-cv::Size parseBoardSize(const std::string& text);
+HOROPTER_API cv::Size parseBoardSize(const std::string& text);
 
-struct StereoImagePair {
+struct HOROPTER_API StereoImagePair {
   std::string name;  // shown in progress lines and errors, e.g. "left01.jpg + right01.jpg"
   cv::Mat left;      // 8-bit grey or BGR
   cv::Mat right;
@@ -36,14 +38,14 @@ struct StereoImagePair {
 // The board's inner corners in one image, refined to sub-pixel accuracy
 // (cornerSubPix, 11x11 window), in OpenCV's row-major order; empty when the
 // whole board is not found.
-std::vector<cv::Point2f> findBoardCorners(const cv::Mat& image, cv::Size innerCorners);
+HOROPTER_API std::vector<cv::Point2f> findBoardCorners(const cv::Mat& image, cv::Size innerCorners);
 
-struct BoardView {
+struct HOROPTER_API BoardView {
   std::string name;
   std::vector<cv::Point2f> left, right;  // the same corners in both images
 };
 
-struct BoardDetections {
+struct HOROPTER_API BoardDetections {
   cv::Size imageSize;                // the size most pairs have
   std::vector<BoardView> views;      // pairs where the board was found in both images
   std::vector<std::string> skipped;  // "NAME: why", in input order
@@ -54,20 +56,20 @@ using ProgressFn = std::function<void(const std::string& line)>;
 // Finds the board in every pair. A pair is skipped, and named with the reason
 // in `skipped`, when either image misses the board, is empty, or differs in
 // size from its partner or from the size most pairs have (imageSize).
-BoardDetections detectBoards(const std::vector<StereoImagePair>& pairs, cv::Size innerCorners,
-                             const ProgressFn& progress = {});
+HOROPTER_API BoardDetections detectBoards(const std::vector<StereoImagePair>& pairs,
+                                          cv::Size innerCorners, const ProgressFn& progress = {});
 
-struct CalibrationOptions {
+struct HOROPTER_API CalibrationOptions {
   int minViews = 5;    // pairs with the board in both images needed to calibrate (>= 3)
   double alpha = 0.0;  // stereoRectify's free scaling: 0 = only valid pixels, 1 = all pixels
 };
 
-struct ViewError {
+struct HOROPTER_API ViewError {
   std::string name;
   double left = 0, right = 0;  // RMS reprojection error of this view per camera, px
 };
 
-struct StereoCalibration {
+struct HOROPTER_API StereoCalibration {
   cv::Size imageSize;
   BoardSpec board;
   cv::Mat K1, D1, K2, D2;     // intrinsics (3x3) and distortion (1xN) per camera
@@ -95,27 +97,29 @@ struct StereoCalibration {
 // (intrinsic guess), stereoRectify (CALIB_ZERO_DISPARITY) and the quality
 // figures. Throws horopter::Error when fewer than options.minViews views
 // remain, naming the skipped ones, or for a non-positive square size.
-StereoCalibration calibrateStereo(const BoardDetections& detections, const BoardSpec& board,
-                                  const CalibrationOptions& options = {});
+HOROPTER_API StereoCalibration calibrateStereo(const BoardDetections& detections,
+                                               const BoardSpec& board,
+                                               const CalibrationOptions& options = {});
 
 // OpenCV FileStorage (YAML or XML by the file's extension). load throws
 // horopter::Error naming the file and the missing or malformed field.
-void saveStereoCalibration(const StereoCalibration& calibration, const std::string& path);
-StereoCalibration loadStereoCalibration(const std::string& path);
+HOROPTER_API void saveStereoCalibration(const StereoCalibration& calibration,
+                                        const std::string& path);
+HOROPTER_API StereoCalibration loadStereoCalibration(const std::string& path);
 
 // The rectified pair's geometry: f = P1(0,0), cx = P1(0,2), cy = P1(1,2),
 // baseline = -P2(0,3) / P2(0,0) (in the board's unit). Throws for a vertical
 // or degenerate rectification.
-RectifiedGeometry rectifiedGeometry(const StereoCalibration& calibration);
+HOROPTER_API RectifiedGeometry rectifiedGeometry(const StereoCalibration& calibration);
 
 // The optical axes of the two (unrectified) cameras in the rectified
 // cyclopean frame: origins at the camera centres, directions R1 e_z and R2 e_z.
-std::pair<Ray, Ray> opticalAxes(const StereoCalibration& calibration);
+HOROPTER_API std::pair<Ray, Ray> opticalAxes(const StereoCalibration& calibration);
 
 // The rectification stage of a pipeline: the undistort-rectify maps are
 // computed once (initUndistortRectifyMap, fixed-point CV_16SC2), then each
 // frame is remapped (bilinear) into buffers owned by the stage and reused.
-class StereoRectifier {
+class HOROPTER_API StereoRectifier {
  public:
   explicit StereoRectifier(const StereoCalibration& calibration);
 

@@ -3,6 +3,8 @@
 // (The synthetic scene is the simulator's: horopter/sim/synthetic_source.hpp.)
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <memory>
 #include <string>
 
@@ -10,7 +12,7 @@
 
 namespace horopter {
 
-struct CaptureOptions {
+struct HOROPTER_API CaptureOptions {
   // Cameras: requested size and rate (0: the driver's default).
   int width = 0, height = 0;
   double fps = 0;
@@ -29,6 +31,7 @@ struct CaptureOptions {
 // Throws horopter::Error for an unknown spec ("synthetic" is the simulator's:
 // a pipeline opens it through sim::syntheticSourceOpener), a missing file or
 // device.
-std::unique_ptr<FrameSource> openSource(const std::string& spec, const CaptureOptions& options);
+HOROPTER_API std::unique_ptr<FrameSource> openSource(const std::string& spec,
+                                                     const CaptureOptions& options);
 
 }  // namespace horopter

@@ -4,6 +4,8 @@
 // (for A/B comparison), and the body triangle head / left hand / right hand.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <opencv2/core.hpp>
 
 #include <memory>
@@ -24,9 +26,9 @@ enum class DetectionScope {
   HoropterRegion,  // only pixels inside the zone (the mask, closed and dilated a little)
   FullImage,       // every pixel: what a detector without the horopter sees
 };
-const char* detectionScopeName(DetectionScope scope);
+HOROPTER_API const char* detectionScopeName(DetectionScope scope);
 
-struct DetectorOptions {
+struct HOROPTER_API DetectorOptions {
   DetectionScope scope = DetectionScope::HoropterRegion;
   std::string faceCascade = kDefaultFaceCascade;
   double scaleFactor = 1.1;  // Haar pyramid step, > 1
@@ -107,7 +109,7 @@ struct DetectorOptions {
   double neckFraction = 0.8;
 };
 
-struct FaceDetection {
+struct HOROPTER_API FaceDetection {
   cv::Rect box;
   cv::Point2f centre;
   float width = 0;          // pixels
@@ -117,7 +119,7 @@ struct FaceDetection {
   float skinLuma = 0;
 };
 
-struct HandDetection {
+struct HOROPTER_API HandDetection {
   cv::Point2f centroid;
   cv::Rect box;
   int areaPx = 0;
@@ -140,16 +142,17 @@ struct HandDetection {
 };
 
 // The body triangle of one person. Left and right are the person's own.
-struct BodyTriangle {
+struct HOROPTER_API BodyTriangle {
   cv::Point2f head, leftHand, rightHand;
   cv::Point2f incentre;     // the centre of the inscribed circle
   double perimeter = 0;     // pixels
   double headAngleRad = 0;  // interior angle at the head vertex
   bool degenerate = false;  // collinear or repeated vertices (incentre = centroid)
 };
-BodyTriangle bodyTriangle(cv::Point2f head, cv::Point2f leftHand, cv::Point2f rightHand);
+HOROPTER_API BodyTriangle bodyTriangle(cv::Point2f head, cv::Point2f leftHand,
+                                       cv::Point2f rightHand);
 
-struct Detections {
+struct HOROPTER_API Detections {
   DetectionScope scope = DetectionScope::HoropterRegion;
   std::vector<FaceDetection> faces;  // sorted by position (deterministic)
   std::vector<HandDetection> hands;  // skin components that are not faces, largest first
@@ -163,7 +166,7 @@ struct Detections {
 };
 
 // Runs both detectors on one frame. Not thread-safe (one per pipeline lane).
-class Detector {
+class HOROPTER_API Detector {
  public:
   // Throws horopter::Error for bad options or a cascade that cannot be loaded.
   explicit Detector(DetectorOptions options);
@@ -180,6 +183,6 @@ class Detector {
 };
 
 // The stage that fills Frame::detections.
-std::unique_ptr<Stage> makeDetectionStage(DetectorOptions options);
+HOROPTER_API std::unique_ptr<Stage> makeDetectionStage(DetectorOptions options);
 
 }  // namespace horopter

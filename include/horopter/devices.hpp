@@ -1,19 +1,21 @@
 // What this machine offers: CPU features, registered backends, OpenCL devices.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <string>
 #include <vector>
 
 namespace horopter {
 
-struct CpuInfo {
+struct HOROPTER_API CpuInfo {
   std::string model;             // from /proc/cpuinfo, or "unknown"
   unsigned hardwareThreads = 0;  // std::thread::hardware_concurrency
   std::vector<std::string>
       features;  // the SIMD features Horopter can use: sse4.2, avx2, avx512bw...
 };
 
-struct OpenClDevice {
+struct HOROPTER_API OpenClDevice {
   int platform = 0;
   int device = 0;
   std::string platformName;
@@ -24,13 +26,13 @@ struct OpenClDevice {
   unsigned long long globalMemBytes = 0;
 };
 
-struct OpenClReport {
+struct HOROPTER_API OpenClReport {
   bool built = false;  // compiled with HOROPTER_WITH_OPENCL
   std::string error;   // why no device could be listed, when any
   std::vector<OpenClDevice> devices;
 };
 
-CpuInfo probeCpu();
-OpenClReport probeOpenCl();
+HOROPTER_API CpuInfo probeCpu();
+HOROPTER_API OpenClReport probeOpenCl();
 
 }  // namespace horopter

@@ -7,6 +7,8 @@
 // across the whole frame, runs on one thread.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -20,12 +22,12 @@
 namespace horopter {
 
 // Wall time of each stage of the last frame, in milliseconds.
-struct FrontendTimings {
+struct HOROPTER_API FrontendTimings {
   double prefilter = 0, match = 0, cleanup = 0, median = 0, mask = 0;
   double total() const { return prefilter + match + cleanup + median + mask; }
 };
 
-class StereoFrontend {
+class HOROPTER_API StereoFrontend {
  public:
   // Validates the parameters and the thread count, 1..256 (throws horopter::Error).
   StereoFrontend(const StereoParams& stereo, const MedianParams& median,

@@ -14,6 +14,8 @@
 // (x, z) of a point matters for inside / outside.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
@@ -22,28 +24,28 @@
 
 namespace horopter {
 
-struct RectifiedGeometry {
+struct HOROPTER_API RectifiedGeometry {
   double focalPx = 0;   // focal length of the rectified pair, pixels
   double cx = 0;        // principal point column, pixels
   double baseline = 0;  // distance between the camera centres (> 0)
   double cy = 0;        // principal point row, pixels (only pointFromPixel uses it)
 };
 
-struct FixationPoint {
+struct HOROPTER_API FixationPoint {
   double x = 0;  // lateral position in the left camera frame
   double z = 0;  // depth (> 0)
 };
 
 // The fixation point seen at column `u` of the left image with disparity
 // `disparityPx` (> 0) pixels.
-FixationPoint fixationFromDisparity(const RectifiedGeometry& geometry, double u,
-                                    double disparityPx);
+HOROPTER_API FixationPoint fixationFromDisparity(const RectifiedGeometry& geometry, double u,
+                                                 double disparityPx);
 
 // ---------------------------------------------------------------------------
 // The cyclopean frame: fixation, circle, depth, 3-D points.
 
 // A half-line: origin and direction (need not be unit length).
-struct Ray {
+struct HOROPTER_API Ray {
   Eigen::Vector3d origin;
   Eigen::Vector3d direction;
 };
@@ -51,7 +53,7 @@ struct Ray {
 // The Vieth-Mueller circle in the plane y = 0 of the cyclopean frame. It
 // passes through both camera centres, so its centre is on the head's axis:
 // (0, centreZ), radius^2 = (B/2)^2 + centreZ^2.
-struct ViethMuellerCircle {
+struct HOROPTER_API ViethMuellerCircle {
   double centreZ = 0;  // z of the centre (x = 0); negative when the circle is small
   double radius = 0;
   Eigen::Vector2d fixation{0, 0};  // (x, z) of the fixation point the circle was built from
@@ -64,42 +66,45 @@ struct ViethMuellerCircle {
 // (a) A symmetric vergence: each camera turned inward by vergenceRad / 2;
 // the fixation is on the head's axis at z = (B/2) / tan(vergence / 2).
 // 0 < vergenceRad < pi.
-Eigen::Vector3d fixationFromVergence(double baseline, double vergenceRad);
+HOROPTER_API Eigen::Vector3d fixationFromVergence(double baseline, double vergenceRad);
 
 // (b) Separate pan angles, measured from the rectified forward axis (+z),
 // positive towards +x (turning right). The axes cross in front of the head
 // only when leftPanRad > rightPanRad; the vergence angle is their difference.
-Eigen::Vector3d fixationFromPanAngles(double baseline, double leftPanRad, double rightPanRad);
+HOROPTER_API Eigen::Vector3d fixationFromPanAngles(double baseline, double leftPanRad,
+                                                   double rightPanRad);
 
 // (c) The closest approach of two optical axes (3-D lines that need not
 // meet): the midpoint of their common perpendicular. Throws for parallel axes
 // (fixation at infinity) or a closest approach behind either camera.
-Eigen::Vector3d fixationFromAxes(const Ray& left, const Ray& right);
+HOROPTER_API Eigen::Vector3d fixationFromAxes(const Ray& left, const Ray& right);
 
 // (d) A requested interaction distance: the fixation straight ahead at
 // z = distance, so the zone reaches exactly that far on the head's axis.
-Eigen::Vector3d fixationAtDistance(double baseline, double distance);
+HOROPTER_API Eigen::Vector3d fixationAtDistance(double baseline, double distance);
 
 // The circle through (-B/2, 0), (B/2, 0) and the fixation's (x, z).
-ViethMuellerCircle viethMuellerCircle(double baseline, const Eigen::Vector3d& fixation);
+HOROPTER_API ViethMuellerCircle viethMuellerCircle(double baseline,
+                                                   const Eigen::Vector3d& fixation);
 
 // Inside the zone (the cylinder over the circle): strictly inside the circle
 // in (x, z) and in front of the baseline (z > 0).
-bool insideZone(const ViethMuellerCircle& circle, const Eigen::Vector3d& point);
+HOROPTER_API bool insideZone(const ViethMuellerCircle& circle, const Eigen::Vector3d& point);
 
 // The vergence angle a point subtends between the two camera centres, rad.
-double vergenceAngleAt(double baseline, const Eigen::Vector3d& point);
+HOROPTER_API double vergenceAngleAt(double baseline, const Eigen::Vector3d& point);
 
 // Depth (z) of a disparity of disparityPx > 0 pixels: f B / d.
-double depthFromDisparity(const RectifiedGeometry& geometry, double disparityPx);
+HOROPTER_API double depthFromDisparity(const RectifiedGeometry& geometry, double disparityPx);
 
 // The 3-D point (cyclopean frame) of left pixel (u, v) with disparity
 // disparityPx > 0: z = f B / d, x = (u - cx) z / f - B/2, y = (v - cy) z / f.
-Eigen::Vector3d pointFromPixel(const RectifiedGeometry& geometry, double u, double v,
-                               double disparityPx);
+HOROPTER_API Eigen::Vector3d pointFromPixel(const RectifiedGeometry& geometry, double u, double v,
+                                            double disparityPx);
 
 // The fixation in the left camera frame, for horopterThresholds below.
-FixationPoint toLeftCameraFrame(const RectifiedGeometry& geometry, const Eigen::Vector3d& point);
+HOROPTER_API FixationPoint toLeftCameraFrame(const RectifiedGeometry& geometry,
+                                             const Eigen::Vector3d& point);
 
 // ---------------------------------------------------------------------------
 // The threshold table for horopterMask.
@@ -120,18 +125,18 @@ FixationPoint toLeftCameraFrame(const RectifiedGeometry& geometry, const Eigen::
 // (Z(u) <= 0) gets INT16_MAX: nothing in it is inside.
 // Throws horopter::Error for a non-positive width, focal length, baseline or
 // fixation depth.
-std::vector<std::int16_t> horopterThresholds(const RectifiedGeometry& geometry, int width,
-                                             const FixationPoint& fixation);
+HOROPTER_API std::vector<std::int16_t> horopterThresholds(const RectifiedGeometry& geometry,
+                                                          int width, const FixationPoint& fixation);
 
 // The same table for a circle from the helpers above, written into `out`
 // (one entry per column, no allocation): cheap enough to recompute every frame
 // from the head's current angles (one division per column).
-void horopterThresholds(const RectifiedGeometry& geometry, const ViethMuellerCircle& circle,
-                        std::span<std::int16_t> out);
+HOROPTER_API void horopterThresholds(const RectifiedGeometry& geometry,
+                                     const ViethMuellerCircle& circle, std::span<std::int16_t> out);
 
 // ---------------------------------------------------------------------------
 // Figures of the zone of interaction, in the baseline's unit.
-struct ZoneExtent {
+struct HOROPTER_API ZoneExtent {
   double radius = 0;
   double centreZ = 0;
   double farOnAxis = 0;    // the zone spans z in (0, farOnAxis] on the head's axis (x = 0)
@@ -139,10 +144,10 @@ struct ZoneExtent {
   double widestZ = 0;      // depth of the widest chord (max(centreZ, 0))
   double widest = 0;       // its width
 };
-ZoneExtent zoneExtent(double baseline, const ViethMuellerCircle& circle);
+HOROPTER_API ZoneExtent zoneExtent(double baseline, const ViethMuellerCircle& circle);
 
 // Width of the zone (chord of the circle parallel to the baseline) at depth
 // z; 0 where the plane z misses the circle.
-double zoneWidthAt(const ViethMuellerCircle& circle, double z);
+HOROPTER_API double zoneWidthAt(const ViethMuellerCircle& circle, double z);
 
 }  // namespace horopter

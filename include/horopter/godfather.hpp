@@ -6,11 +6,13 @@
 // so the election is deterministic and testable with a fake clock.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <optional>
 
 namespace horopter {
 
-struct ElectionOptions {
+struct HOROPTER_API ElectionOptions {
   double electS = 2.0;    // T: continuous presence inside the zone to be elected
   double releaseS = 1.0;  // T_lost: absence from the zone that releases the godfather
   // A candidate survives detector misses shorter than this (a face missed for
@@ -19,9 +21,9 @@ struct ElectionOptions {
 };
 
 enum class ElectionState { None, Candidate, Godfather };
-const char* electionStateName(ElectionState state);
+HOROPTER_API const char* electionStateName(ElectionState state);
 
-class GodfatherElection {
+class HOROPTER_API GodfatherElection {
  public:
   explicit GodfatherElection(ElectionOptions options = {});  // throws for negative times
 

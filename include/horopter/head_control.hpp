@@ -15,6 +15,8 @@
 // so the outputs do not depend on threads or frames in flight.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -34,7 +36,7 @@ namespace horopter {
 
 enum class PanTiltFormula { Atan2, Paper };
 
-struct HeadControlOptions {
+struct HOROPTER_API HeadControlOptions {
   PanTiltFormula formula = PanTiltFormula::Atan2;
   double lambda = 0.75;         // Paper: phi = d * lambda (1/m, empirical)
   double gain = 0.7;            // fraction of the angular error corrected per command, (0, 1]
@@ -64,21 +66,22 @@ struct HeadControlOptions {
 };
 
 // Absolute pan and tilt that centre `rigPoint` (rig frame of a head at `pose`).
-hw::HeadAngles anglesToCentre(const cv::Point3f& rigPoint, const hw::HeadAngles& pose);
+HOROPTER_API hw::HeadAngles anglesToCentre(const cv::Point3f& rigPoint, const hw::HeadAngles& pose);
 // Where a still point seen at `pixel` of the rectified left image, `depthM`
 // ahead of the rig, appears once the head has turned from pose `from` to
 // pose `to` (both about the rig's origin, midway between the cameras). The
 // pixel is returned unchanged when the point would lie behind the camera or
 // the geometry is missing (focalPx or depth not positive).
-cv::Point2f pixelAfterHeadTurn(cv::Point2f pixel, double depthM, const hw::HeadAngles& from,
-                               const hw::HeadAngles& to, const RectifiedGeometry& rig);
+HOROPTER_API cv::Point2f pixelAfterHeadTurn(cv::Point2f pixel, double depthM,
+                                            const hw::HeadAngles& from, const hw::HeadAngles& to,
+                                            const RectifiedGeometry& rig);
 // The paper's formula: the angle to add to the pose for an offset `offsetPx`
 // (pixels from the principal point) at distance `distanceM`.
-double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda);
+HOROPTER_API double paperAngle(double offsetPx, double focalPx, double distanceM, double lambda);
 // The next command from the pose at capture towards `target`: dead band,
 // gain, rate limit over one frame, angle limits. Vergence is kept.
-hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& target,
-                            const HeadControlOptions& options);
+HOROPTER_API hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& target,
+                                         const HeadControlOptions& options);
 
 // Where commands go: (frame they were computed from, command or none).
 using HeadCommandSink = std::function<void(std::int64_t, const std::optional<hw::HeadAngles>&)>;
@@ -86,7 +89,7 @@ using HeadCommandSink = std::function<void(std::int64_t, const std::optional<hw:
 // Needs Frame::tracking; commands only for an elected godfather whose head
 // was observed this frame; posts every frame (std::nullopt when none) and
 // records the command in a copy of Frame::tracking.
-std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options, CapturePose pose,
-                                            HeadCommandSink sink);
+HOROPTER_API std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options,
+                                                         CapturePose pose, HeadCommandSink sink);
 
 }  // namespace horopter

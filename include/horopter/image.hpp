@@ -5,6 +5,8 @@
 // cv::Mat share memory with Horopter without hidden copies.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -21,12 +23,12 @@ enum class PixelType {
 };
 
 // Bytes of one pixel of this type.
-std::size_t pixelBytes(PixelType type);
+HOROPTER_API std::size_t pixelBytes(PixelType type);
 // "U8C1", "U8C3", "S16C1".
-const char* pixelTypeName(PixelType type);
+HOROPTER_API const char* pixelTypeName(PixelType type);
 
 // A read-only view. Row y starts at data + y * strideBytes.
-struct ConstImageView {
+struct HOROPTER_API ConstImageView {
   const void* data = nullptr;
   int width = 0;
   int height = 0;
@@ -42,7 +44,7 @@ struct ConstImageView {
 };
 
 // A writable view.
-struct ImageView {
+struct HOROPTER_API ImageView {
   void* data = nullptr;
   int width = 0;
   int height = 0;
@@ -60,22 +62,22 @@ struct ImageView {
 };
 
 // Builds a view with the tightest stride for its width (width * pixelBytes).
-ConstImageView makeView(const void* data, int width, int height, PixelType type);
-ImageView makeView(void* data, int width, int height, PixelType type);
+HOROPTER_API ConstImageView makeView(const void* data, int width, int height, PixelType type);
+HOROPTER_API ImageView makeView(void* data, int width, int height, PixelType type);
 
 // Throws horopter::Error unless the view is usable as `what` ("left image"):
 // non-null, positive size, the expected pixel type, stride >= width * bytes.
-void checkView(const ConstImageView& view, PixelType expected, const char* what);
+HOROPTER_API void checkView(const ConstImageView& view, PixelType expected, const char* what);
 // The same for a view of any of the listed pixel types.
-void checkViewOneOf(const ConstImageView& view, std::initializer_list<PixelType> allowed,
-                    const char* what);
+HOROPTER_API void checkViewOneOf(const ConstImageView& view,
+                                 std::initializer_list<PixelType> allowed, const char* what);
 // Throws unless `b` has the size of `a`.
-void checkSameSize(const ConstImageView& a, const char* whatA, const ConstImageView& b,
-                   const char* whatB);
+HOROPTER_API void checkSameSize(const ConstImageView& a, const char* whatA, const ConstImageView& b,
+                                const char* whatB);
 
 // An owned image: 64-byte aligned rows, each padded to a multiple of 64 bytes,
 // so that vector code can read whole vectors at the end of a row.
-class Image {
+class HOROPTER_API Image {
  public:
   static constexpr std::size_t kAlignment = 64;
 

@@ -2,12 +2,14 @@
 // pixels and pixels/s), with a Mahalanobis gate for data association.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 namespace horopter {
 
-struct KalmanOptions {
+struct HOROPTER_API KalmanOptions {
   double accelerationStd = 1500;  // white-noise acceleration, px/s^2 (how fast parts may turn)
   double measurementStd = 4;      // detection noise, px
   double initialSpeedStd = 300;   // velocity uncertainty of a new track, px/s
@@ -15,7 +17,7 @@ struct KalmanOptions {
   double gateMinPx = 12;          // a detection this close always passes the gate
 };
 
-class ConstantVelocityTrack {
+class HOROPTER_API ConstantVelocityTrack {
  public:
   // Throws horopter::Error for non-positive noises or gate.
   ConstantVelocityTrack(cv::Point2f position, double timeS, const KalmanOptions& options);

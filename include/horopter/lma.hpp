@@ -29,6 +29,8 @@
 // head's (or the last known) depth with the camera's intrinsics.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -38,7 +40,7 @@
 
 namespace horopter {
 
-struct LmaOptions {
+struct HOROPTER_API LmaOptions {
   // The left rectified camera (for back-projecting parts without depth).
   double focalPx = 554.2562584220407;  // the synthetic scene's 60 degree field of view at 640 px
   double cx = 319.5, cy = 239.5;
@@ -55,7 +57,7 @@ struct LmaOptions {
 };
 
 // One part's kinematics this frame.
-struct PartKinematics {
+struct HOROPTER_API PartKinematics {
   bool valid = false;       // tracked, with enough history
   cv::Point3f position;     // relative to the sternum (head: absolute rig position)
   cv::Point3f velocity;     // m/s (hands: relative to the sternum)
@@ -96,10 +98,10 @@ enum class LmaSymbol {
 };
 inline constexpr int kLmaSymbolCount = 15;
 // The number of values each symbol takes, and its name (for the model file).
-int lmaSymbolCardinality(LmaSymbol symbol);
-const char* lmaSymbolName(LmaSymbol symbol);
+HOROPTER_API int lmaSymbolCardinality(LmaSymbol symbol);
+HOROPTER_API const char* lmaSymbolName(LmaSymbol symbol);
 
-struct LmaFeatures {
+struct HOROPTER_API LmaFeatures {
   bool valid = false;  // a godfather with head and hands tracked, enough history
   PartKinematics head, leftHand, rightHand;
   int activeHand = 0;        // 0 none, 1 left, 2 right (the person's own)
@@ -115,13 +117,13 @@ struct LmaFeatures {
 
 // Quantises an angle (radians, any value) into 8 sectors of 45 degrees
 // centred on 0, 45, ..., 315 degrees.
-int angleSector(double angleRad);
+HOROPTER_API int angleSector(double angleRad);
 
 // Online: one update per frame, in order. A frame without a godfather (or
 // without the head tracked) gives invalid features and starts the history
 // again. A hand without a track keeps its last place for holdHandS, then
 // hangs at rest.
-class LmaExtractor {
+class HOROPTER_API LmaExtractor {
  public:
   explicit LmaExtractor(LmaOptions options = {});
   LmaFeatures update(const BodySample& sample);

@@ -6,6 +6,8 @@
 // MovementClassifier (movement_classifier.hpp) -> Behaviour (behaviour.hpp).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <array>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -25,9 +27,9 @@ namespace horopter {
 enum class MovementClass { None, Circle, Pointing, WaveLeft, WaveRight, SagittalWave, ByeBye };
 inline constexpr int kMovementClassCount = 7;
 // "none", "circle", "pointing", "wave-left", "wave-right", "sagittal-wave", "bye-bye".
-const char* movementClassName(MovementClass movement);
+HOROPTER_API const char* movementClassName(MovementClass movement);
 // The inverse of movementClassName; std::nullopt for an unknown name.
-std::optional<MovementClass> movementClassFromName(const std::string& name);
+HOROPTER_API std::optional<MovementClass> movementClassFromName(const std::string& name);
 
 using MovementPosterior = std::array<double, kMovementClassCount>;
 
@@ -41,10 +43,10 @@ enum class RobotAction {
   ComeCloser,       // sagittal wave: drive towards the person
   StopInteraction,  // bye-bye: stop at once; later decisions are ignored
 };
-const char* robotActionName(RobotAction action);
+HOROPTER_API const char* robotActionName(RobotAction action);
 
 // What the movement stage knows after a frame.
-struct MovementState {
+struct HOROPTER_API MovementState {
   LmaFeatures features;
   MovementPosterior posterior{};                  // sums to 1
   MovementClass likeliest = MovementClass::None;  // argmax of the posterior
@@ -63,7 +65,7 @@ struct MovementState {
 
 class MovementModel;  // movement_classifier.hpp
 
-struct MovementStageOptions {
+struct HOROPTER_API MovementStageOptions {
   LmaOptions lma;
   // Optional: the stage sends each frame's base velocity here (not owned;
   // must outlive the pipeline). Head offsets are left to the head control.
@@ -72,16 +74,16 @@ struct MovementStageOptions {
 
 // The stage "movement": LMA features, classification and behaviour from
 // Frame::body; fills Frame::movement. Needs the tracking stage before it.
-std::unique_ptr<Stage> makeMovementStage(std::shared_ptr<const MovementModel> model,
-                                         MovementStageOptions options = {});
+HOROPTER_API std::unique_ptr<Stage> makeMovementStage(std::shared_ptr<const MovementModel> model,
+                                                      MovementStageOptions options = {});
 
 // The stage's work over a recorded track, sample by sample (no pipeline).
-std::vector<MovementState> classifyTrack(const std::vector<BodySample>& samples,
-                                         std::shared_ptr<const MovementModel> model,
-                                         MovementStageOptions options = {});
+HOROPTER_API std::vector<MovementState> classifyTrack(const std::vector<BodySample>& samples,
+                                                      std::shared_ptr<const MovementModel> model,
+                                                      MovementStageOptions options = {});
 
 // Draws the likeliest movement, the posterior as bars, the last decision and
 // the running action into the top right of a BGR image (CV_8UC3).
-void drawMovementOverlay(cv::Mat& bgr, const MovementState& state);
+HOROPTER_API void drawMovementOverlay(cv::Mat& bgr, const MovementState& state);
 
 }  // namespace horopter

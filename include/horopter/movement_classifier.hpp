@@ -41,6 +41,8 @@
 // same tables and posteriors.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -53,7 +55,7 @@
 
 namespace horopter {
 
-struct MovementModelParams {
+struct HOROPTER_API MovementModelParams {
   double stay = 0.97;               // P(M_t = M_{t-1}), in (0, 1)
   double evidenceWeight = 0.15;     // exponent of each frame's likelihood, in (0, 1]
   double decisionThreshold = 0.95;  // posterior to decide a movement, in (0.5, 1)
@@ -62,7 +64,7 @@ struct MovementModelParams {
 };
 
 // Labelled symbol counts: what training produces and the file stores.
-struct MovementCounts {
+struct HOROPTER_API MovementCounts {
   // [symbol][value][class]
   std::array<std::vector<std::array<std::int64_t, kMovementClassCount>>, kLmaSymbolCount> table;
   std::array<std::int64_t, kMovementClassCount> frames{};  // labelled frames per class
@@ -72,7 +74,7 @@ struct MovementCounts {
   void merge(const MovementCounts& other);
 };
 
-class MovementModel {
+class HOROPTER_API MovementModel {
  public:
   static constexpr int kFormatVersion = 1;
   static constexpr const char* kMagic = "horopter-movement-model";
@@ -105,7 +107,7 @@ class MovementModel {
 };
 
 // The online filter and the decision rule.
-class MovementClassifier {
+class HOROPTER_API MovementClassifier {
  public:
   explicit MovementClassifier(std::shared_ptr<const MovementModel> model);
 

@@ -17,6 +17,8 @@
 // (horopter::Error), not a fallback.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -30,7 +32,7 @@ namespace horopter {
 
 // Device time of one stage of a frame (upload, a kernel, download), from
 // OpenCL profiling events; CPU stages (the speckle filter) in wall time.
-struct OpenClStageTime {
+struct HOROPTER_API OpenClStageTime {
   std::string stage;
   double ms = 0;
   bool onDevice = true;
@@ -40,7 +42,7 @@ namespace opencl {
 class Pipeline;
 }
 
-class OpenClFrontend {
+class HOROPTER_API OpenClFrontend {
  public:
   using Ticket = std::uint64_t;
 

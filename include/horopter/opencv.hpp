@@ -1,6 +1,8 @@
 // cv::Mat interop: views over Mat memory (no copies) and back.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <opencv2/core.hpp>
 
 #include "horopter/image.hpp"
@@ -9,12 +11,12 @@ namespace horopter {
 
 // A view of `mat` (CV_8UC1, CV_8UC3 or CV_16SC1); throws horopter::Error for
 // other types. The Mat must outlive the view.
-ConstImageView viewOf(const cv::Mat& mat);
-ImageView mutableViewOf(cv::Mat& mat);
+HOROPTER_API ConstImageView viewOf(const cv::Mat& mat);
+HOROPTER_API ImageView mutableViewOf(cv::Mat& mat);
 
 // A cv::Mat header over the view's memory (no copy).
-cv::Mat matOf(const ConstImageView& view);
-cv::Mat matOf(const ImageView& view);
+HOROPTER_API cv::Mat matOf(const ConstImageView& view);
+HOROPTER_API cv::Mat matOf(const ImageView& view);
 inline cv::Mat matOf(const Image& image) {
   return matOf(image.view());
 }

@@ -6,6 +6,8 @@
 // own member initialiser).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <string>
 
 #include "horopter/error.hpp"
@@ -25,13 +27,14 @@ struct IntOption {
 // Strict parsing, for every front end: the whole text must be a number in
 // [min, max]; "2junk", "abc", "", "nan", "inf" and out-of-range values throw
 // horopter::Error naming `option` and the range.
-long long parseInteger(const std::string& text, const std::string& option, long long min,
-                       long long max);
-double parseNumber(const std::string& text, const std::string& option, double min, double max);
+HOROPTER_API long long parseInteger(const std::string& text, const std::string& option,
+                                    long long min, long long max);
+HOROPTER_API double parseNumber(const std::string& text, const std::string& option, double min,
+                                double max);
 
 // "<name> must be within <min>..<max> <unit>, got <value>".
-std::string rangeMessage(const std::string& name, const std::string& unit, long long min,
-                         long long max, long long value);
+HOROPTER_API std::string rangeMessage(const std::string& name, const std::string& unit,
+                                      long long min, long long max, long long value);
 
 // Throws horopter::Error (rangeMessage) where p's option is out of range.
 template <class Params>

@@ -28,6 +28,8 @@
 // stops capture and lets the frames already in flight finish.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <any>
 #include <atomic>
 #include <chrono>
@@ -51,14 +53,14 @@ struct RobotState;     // horopter/robot_stage.hpp: what the robot was told and 
 using SteadyClock = std::chrono::steady_clock;
 
 // When a stage worked on a frame, for the summary and the trace.
-struct StageSpan {
+struct HOROPTER_API StageSpan {
   std::string stage;
   SteadyClock::time_point start, end;
 };
 
 // One frame and everything the stages derive from it. Stages fill the fields
 // they produce; later stages read them.
-struct Frame {
+struct HOROPTER_API Frame {
   std::int64_t index = 0;                // 0, 1, 2... in capture order
   SteadyClock::time_point captured{};    // when the source delivered it
   cv::Mat left, right;                   // as captured (BGR or grey)
@@ -78,7 +80,7 @@ struct Frame {
 // A capture source. next() fills the frame's images (and truth) and returns
 // false at the end of the input; it may block (a camera waits for its next
 // frame). Throw horopter::Error for a device that fails or stalls.
-class FrameSource {
+class HOROPTER_API FrameSource {
  public:
   virtual ~FrameSource() = default;
   virtual std::string name() const = 0;
@@ -86,7 +88,7 @@ class FrameSource {
 };
 
 // One step of the per-frame work.
-class Stage {
+class HOROPTER_API Stage {
  public:
   virtual ~Stage() = default;
   virtual std::string name() const = 0;
@@ -94,11 +96,11 @@ class Stage {
 };
 
 // A stage made of a function, for small steps and tests.
-std::unique_ptr<Stage> makeStage(std::string name, std::function<void(Frame&)> fn);
+HOROPTER_API std::unique_ptr<Stage> makeStage(std::string name, std::function<void(Frame&)> fn);
 
 enum class PipelineMode { Offline, Live };
 
-struct PipelineOptions {
+struct HOROPTER_API PipelineOptions {
   PipelineMode mode = PipelineMode::Offline;
   int inFlight = 3;             // frames between capture and the end of the last stage, 1..64
   std::int64_t maxFrames = -1;  // stop after this many captured frames (-1: until the end)
@@ -110,21 +112,21 @@ struct PipelineOptions {
   std::function<void(const Frame&)> onFrame;
 };
 
-struct StageSummary {
+struct HOROPTER_API StageSummary {
   std::string name;
   std::int64_t frames = 0;
   double meanMs = 0;  // wall time per frame in this stage
   double fps() const { return meanMs > 0 ? 1000.0 / meanMs : 0; }
 };
 
-struct TraceEvent {
+struct HOROPTER_API TraceEvent {
   std::string stage;
   std::int64_t frame = 0;
   int lane = 0;                        // 0 = capture, 1.. = the stages, in order
   double startUs = 0, durationUs = 0;  // from the start of the run
 };
 
-struct RunSummary {
+struct HOROPTER_API RunSummary {
   std::int64_t captured = 0;   // frames the source delivered
   std::int64_t completed = 0;  // frames through every stage
   std::int64_t dropped = 0;    // live mode: stale frames replaced before entering
@@ -137,7 +139,7 @@ struct RunSummary {
   bool stoppedByRequest = false;
 };
 
-class Pipeline {
+class HOROPTER_API Pipeline {
  public:
   explicit Pipeline(PipelineOptions options);  // validates them (horopter::Error)
   ~Pipeline();
@@ -159,9 +161,9 @@ class Pipeline {
 
 // Chrome trace events (open in Perfetto or chrome://tracing): one row per
 // lane, one slice per stage and frame, so the overlap of frames is visible.
-void writeChromeTrace(const RunSummary& summary, const std::string& path);
+HOROPTER_API void writeChromeTrace(const RunSummary& summary, const std::string& path);
 
 // The summary as one JSON object: frames, fps, latency_ms, dropped, stages.
-std::string summaryJson(const RunSummary& summary);
+HOROPTER_API std::string summaryJson(const RunSummary& summary);
 
 }  // namespace horopter

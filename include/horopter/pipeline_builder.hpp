@@ -10,6 +10,8 @@
 // switches the interaction half off, `movement` adds the classifier.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -34,7 +36,7 @@ class MovementModel;  // horopter/movement_classifier.hpp
 // Where the zone (and the rectification) come from, first that applies:
 // a calibration file; the synthetic scene's own rig and vergence; else the
 // source is taken as rectified and the zone from a fixation disparity.
-struct ZoneOptions {
+struct HOROPTER_API ZoneOptions {
   std::string calib;                          // calibration file (empty: none)
   double fixationDistanceM = 1.5;             // with calib: fixation straight ahead, m, > 0
   std::optional<double> fixationDisparityPx;  // else: on the centre column, px (default:
@@ -47,7 +49,7 @@ struct ZoneOptions {
 // stage (profiling; no detection then).
 enum class StopAfter { Everything, Rectify, Disparity, Mask };
 
-struct PipelineConfig {
+struct HOROPTER_API PipelineConfig {
   // Capture: a source spec (see openSource, or a source opener's) and its options.
   std::string source = "synthetic";
   CaptureOptions capture;
@@ -80,7 +82,7 @@ struct PipelineConfig {
 
 // A source as an opener delivers it: the frames, and what the source knows
 // of itself that the configuration would otherwise have to say.
-struct OpenedSource {
+struct HOROPTER_API OpenedSource {
   std::unique_ptr<FrameSource> source;
   // A source that knows its rig (a simulator): the zone's thresholds for
   // each frame, the rectified geometry and the frame rate of its clock.
@@ -103,7 +105,7 @@ using SourceOpener =
 // What the caller adds: where finished frames go, a stop flag (Ctrl-C),
 // stages after the built ones (a robot, a scorer), and an opener for
 // sources the library does not know (the simulator's "synthetic").
-struct PipelineHooks {
+struct HOROPTER_API PipelineHooks {
   std::function<void(const Frame&)> onFrame;
   const std::atomic<bool>* stopRequested = nullptr;
   std::vector<std::unique_ptr<Stage>> extraStages;
@@ -111,7 +113,7 @@ struct PipelineHooks {
 };
 
 // A pipeline with its source, ready to run once.
-class AssembledPipeline {
+class HOROPTER_API AssembledPipeline {
  public:
   AssembledPipeline(AssembledPipeline&&) noexcept;
   AssembledPipeline& operator=(AssembledPipeline&&) noexcept;
@@ -131,13 +133,14 @@ class AssembledPipeline {
 };
 
 // Throws horopter::Error for a bad configuration, source or calibration.
-AssembledPipeline buildPipeline(const PipelineConfig& config, PipelineHooks hooks = {});
+HOROPTER_API AssembledPipeline buildPipeline(const PipelineConfig& config,
+                                             PipelineHooks hooks = {});
 
 // A digest of what a frame's stages produced: its index, disparity, mask
 // and the godfather's tracked parts (FNV-1a, 64 bits). Equal digests over a
 // run mean equal outputs; the parity tests compare them across front ends.
-std::uint64_t frameDigest(const Frame& frame);
+HOROPTER_API std::uint64_t frameDigest(const Frame& frame);
 // Frame digests folded in frame order.
-std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frameDigest);
+HOROPTER_API std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frameDigest);
 
 }  // namespace horopter

@@ -6,6 +6,8 @@
 // last, on a SimulatedRobot (real drivers on simulated devices).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <atomic>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -18,12 +20,12 @@
 namespace horopter {
 
 // What the robot stage saw after commanding the robot for a frame.
-struct RobotState {
+struct HOROPTER_API RobotState {
   std::int64_t frame = 0;
   hw::TelemetrySample telemetry;
 };
 
-struct RobotStageOptions {
+struct HOROPTER_API RobotStageOptions {
   hw::Head* head = nullptr;  // not owned; null: no head commands
   hw::Base* base = nullptr;  // not owned; null: no base commands
   // Optional: the telemetry source and log (not owned; both or neither).
@@ -37,10 +39,10 @@ struct RobotStageOptions {
 // The stage "robot". Needs the tracking stage (head) and/or the movement
 // stage (base) before it; a frame without them commands nothing new (the
 // base then stops by its own watchdog).
-std::unique_ptr<Stage> makeRobotStage(RobotStageOptions options);
+HOROPTER_API std::unique_ptr<Stage> makeRobotStage(RobotStageOptions options);
 
 // The robot's measured head angles, base velocity, odometry and e-stop, as
 // text in the bottom left of a BGR image (CV_8UC3).
-void drawRobotOverlay(cv::Mat& bgr, const RobotState& state);
+HOROPTER_API void drawRobotOverlay(cv::Mat& bgr, const RobotState& state);
 
 }  // namespace horopter

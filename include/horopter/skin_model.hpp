@@ -4,6 +4,8 @@
 // change of lighting gain moves skin along the table only a little.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -11,13 +13,13 @@
 
 namespace horopter {
 
-struct SkinThresholds {
+struct HOROPTER_API SkinThresholds {
   int crMin = 135, crMax = 180;  // Chai and Ngan's classic box, widened a little
   int cbMin = 77, cbMax = 127;
   int yMin = 40;  // darker pixels carry no reliable chroma
 };
 
-class SkinModel {
+class HOROPTER_API SkinModel {
  public:
   // The thresholds' box (the default model: SkinThresholds' defaults).
   SkinModel() : SkinModel(SkinThresholds{}) {}

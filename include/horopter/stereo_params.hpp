@@ -5,6 +5,8 @@
 // (minDisparity - 1) * 16, as OpenCV's.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstdint>
 #include <span>
 #include <string>
@@ -21,7 +23,7 @@ enum class PreFilterType {
   XSobel  // match the clipped horizontal Sobel response (OpenCV's PREFILTER_XSOBEL)
 };
 
-struct StereoParams {
+struct HOROPTER_API StereoParams {
   // Smallest disparity searched, in pixels. May be negative.
   int minDisparity = 0;
   // Size of the search range in pixels; a positive multiple of 16.
@@ -53,14 +55,14 @@ inline std::int16_t invalidDisparity(const StereoParams& p) {
 }
 
 // Throws horopter::Error naming the first bad parameter and its allowed range.
-void validate(const StereoParams& p);
+HOROPTER_API void validate(const StereoParams& p);
 
 // "none" / "xsobel"; parsing throws horopter::Error on anything else.
-const char* toString(PreFilterType t);
-PreFilterType parsePreFilterType(const std::string& s);
+HOROPTER_API const char* toString(PreFilterType t);
+HOROPTER_API PreFilterType parsePreFilterType(const std::string& s);
 
 // Invalid-aware median filter that fills holes.
-struct MedianParams {
+struct HOROPTER_API MedianParams {
   // 0 (off), 3 or 5.
   int kernelSize = 5;
   // An invalid pixel is filled when at least this many pixels of its window
@@ -69,15 +71,15 @@ struct MedianParams {
 };
 
 // The fill threshold in effect (resolves the 0 default).
-int effectiveMinValid(const MedianParams& m);
-void validate(const MedianParams& m);
+HOROPTER_API int effectiveMinValid(const MedianParams& m);
+HOROPTER_API void validate(const MedianParams& m);
 
 // Every integer option of StereoParams and MedianParams, declared once (unit,
 // range, help, flag), in the order `--help` lists them; preFilterType
 // (--pre-filter-type none|xsobel) is the one choice. validate() checks these
 // ranges, then the rules across options (a multiple of 16, an odd window,
 // disparities that fit int16, a fill count within the window).
-std::span<const IntOption<StereoParams>> stereoOptions();
-std::span<const IntOption<MedianParams>> medianOptions();
+HOROPTER_API std::span<const IntOption<StereoParams>> stereoOptions();
+HOROPTER_API std::span<const IntOption<MedianParams>> medianOptions();
 
 }  // namespace horopter

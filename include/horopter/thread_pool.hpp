@@ -3,6 +3,8 @@
 // workers and a pool of 1 starts none.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -13,7 +15,7 @@
 
 namespace horopter {
 
-class ThreadPool {
+class HOROPTER_API ThreadPool {
  public:
   // threads >= 1; throws horopter::Error otherwise or above 256.
   explicit ThreadPool(int threads);

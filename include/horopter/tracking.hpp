@@ -4,6 +4,8 @@
 // with movement analysis, horopter/body.hpp).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -21,7 +23,7 @@ namespace horopter {
 // its measurement at capture); std::nullopt where unknown.
 using CapturePose = std::function<std::optional<hw::HeadAngles>(const Frame&)>;
 
-struct TrackerOptions {
+struct HOROPTER_API TrackerOptions {
   ElectionOptions election;
   KalmanOptions head{800, 3, 200, 13.8, 12};
   // Hands start and stop within a frame or two (a wave's turn): a large
@@ -119,7 +121,7 @@ struct TrackerOptions {
   CapturePose capturePose;
 };
 
-struct TrackingState {
+struct HOROPTER_API TrackingState {
   double timeS = 0;
   ElectionState election = ElectionState::None;
   double candidateS = 0;  // how long the candidate has been inside
@@ -135,7 +137,7 @@ struct TrackingState {
 };
 
 // The tracker's state machine, one frame at a time (in order).
-class BodyTracker {
+class HOROPTER_API BodyTracker {
  public:
   explicit BodyTracker(TrackerOptions options);  // throws horopter::Error for bad options
   ~BodyTracker();
@@ -157,12 +159,13 @@ class BodyTracker {
 };
 
 // The stage that fills Frame::tracking and Frame::body.
-std::unique_ptr<Stage> makeTrackingStage(TrackerOptions options);
+HOROPTER_API std::unique_ptr<Stage> makeTrackingStage(TrackerOptions options);
 
 // The rig-frame point (metres) seen at `pixel` of the left image, from the
 // median valid disparity of Frame::disparity within `window` around it; NaN
 // when no valid disparity is there.
-cv::Point3f rigPointFromDisparity(const cv::Mat& disparity, const RectifiedGeometry& rig,
-                                  cv::Point2f pixel, cv::Rect window);
+HOROPTER_API cv::Point3f rigPointFromDisparity(const cv::Mat& disparity,
+                                               const RectifiedGeometry& rig, cv::Point2f pixel,
+                                               cv::Rect window);
 
 }  // namespace horopter

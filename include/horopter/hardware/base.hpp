@@ -9,6 +9,8 @@
 // bad frames, the RMP's own e-stop and a lost link.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 #include <optional>
 #include <string>
@@ -19,20 +21,20 @@ using Clock = std::chrono::steady_clock;
 
 // SI units: linear m/s forward, angular rad/s, positive turns left
 // (counter-clockwise seen from above).
-struct BaseVelocity {
+struct HOROPTER_API BaseVelocity {
   double linear = 0;
   double angular = 0;
 };
 
 // Integrated from the base's own reports: x forward and y left of the pose
 // at start, heading counter-clockwise, in metres and radians.
-struct Odometry {
+struct HOROPTER_API Odometry {
   Clock::time_point stamp{};
   double x = 0, y = 0, heading = 0;
   BaseVelocity velocity;  // measured
 };
 
-class Base {
+class HOROPTER_API Base {
  public:
   virtual ~Base() = default;
   virtual std::string name() const = 0;

@@ -4,6 +4,8 @@
 // every machine; this one always is).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -14,7 +16,7 @@
 
 namespace horopter::hw {
 
-class SocketCan final : public CanTransport {
+class HOROPTER_API SocketCan final : public CanTransport {
  public:
   // Throws horopter::Error when the interface does not exist or is down.
   explicit SocketCan(const std::string& interfaceName);
@@ -32,7 +34,7 @@ class SocketCan final : public CanTransport {
 
 // CAN frames carried in the RMP's 18-byte USB packets over a ByteTransport
 // (see rmp_protocol.hpp). Corrupt packets are dropped and counted.
-class RmpUsbCan final : public CanTransport {
+class HOROPTER_API RmpUsbCan final : public CanTransport {
  public:
   explicit RmpUsbCan(std::unique_ptr<ByteTransport> bytes);
   void send(const CanFrame& frame) override;
@@ -48,7 +50,7 @@ class RmpUsbCan final : public CanTransport {
 
 // Two endpoints of one in-process bus: what one sends the other receives.
 // Either side can be cut (disconnect()): both then throw LinkError.
-class InProcessCanBus {
+class HOROPTER_API InProcessCanBus {
  public:
   InProcessCanBus();
   CanTransport& hostSide() { return *host_; }

@@ -16,6 +16,8 @@
 // with "pan positive turns right" for each eye).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -28,7 +30,7 @@
 
 namespace horopter::hw {
 
-struct DynamixelHeadOptions {
+struct HOROPTER_API DynamixelHeadOptions {
   std::uint8_t panId = 1;
   std::uint8_t tiltId = 2;
   std::optional<std::uint8_t> leftVergenceId, rightVergenceId;  // both or neither
@@ -43,7 +45,7 @@ struct DynamixelHeadOptions {
   int linkLostAfter = 5;
 };
 
-class DynamixelHead final : public Head {
+class HOROPTER_API DynamixelHead final : public Head {
  public:
   // Throws horopter::Error if a servo does not answer its ping or options are bad.
   DynamixelHead(std::unique_ptr<ByteTransport> transport, DynamixelHeadOptions options = {});

@@ -19,6 +19,8 @@
 // tests/hardware/dynamixel_protocol_test.cpp.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -41,24 +43,24 @@ constexpr std::uint8_t kBulkRead = 0x92;
 }  // namespace inst
 
 // One decoded packet (instruction or status), parameters unstuffed.
-struct Packet {
+struct HOROPTER_API Packet {
   std::uint8_t id = 0;
   std::uint8_t instruction = 0;
   std::vector<std::uint8_t> params;
 };
 
 // A status packet's fields: the ERROR byte split off the parameters.
-struct Status {
+struct HOROPTER_API Status {
   std::uint8_t id = 0;
   std::uint8_t error = 0;
   std::vector<std::uint8_t> data;
 };
 
-std::uint16_t crc16(std::span<const std::uint8_t> bytes);
+HOROPTER_API std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
 // A complete packet on the wire (stuffing applied, CRC appended).
-std::vector<std::uint8_t> encodePacket(std::uint8_t id, std::uint8_t instruction,
-                                       std::span<const std::uint8_t> params);
+HOROPTER_API std::vector<std::uint8_t> encodePacket(std::uint8_t id, std::uint8_t instruction,
+                                                    std::span<const std::uint8_t> params);
 inline std::vector<std::uint8_t> encodePacket(std::uint8_t id, std::uint8_t instruction,
                                               const std::vector<std::uint8_t>& params) {
   return encodePacket(id, instruction, std::span<const std::uint8_t>(params));
@@ -70,7 +72,7 @@ enum class ParseOutcome {
   kCorrupt,   // bad length or CRC: drop `consumed` bytes and look again; `error` says why
 };
 
-struct ParseResult {
+struct HOROPTER_API ParseResult {
   ParseOutcome outcome = ParseOutcome::kNeedMore;
   Packet packet;
   std::size_t consumed = 0;
@@ -79,33 +81,34 @@ struct ParseResult {
 
 // Finds the first packet in `buffer` (bytes before a header are skipped and
 // counted in `consumed`). Never throws; malformed input gives kCorrupt.
-ParseResult parsePacket(std::span<const std::uint8_t> buffer);
+HOROPTER_API ParseResult parsePacket(std::span<const std::uint8_t> buffer);
 
 // Instruction builders (the whole packet on the wire).
-std::vector<std::uint8_t> pingPacket(std::uint8_t id);
-std::vector<std::uint8_t> readPacket(std::uint8_t id, std::uint16_t address, std::uint16_t length);
-std::vector<std::uint8_t> writePacket(std::uint8_t id, std::uint16_t address,
-                                      std::span<const std::uint8_t> data);
+HOROPTER_API std::vector<std::uint8_t> pingPacket(std::uint8_t id);
+HOROPTER_API std::vector<std::uint8_t> readPacket(std::uint8_t id, std::uint16_t address,
+                                                  std::uint16_t length);
+HOROPTER_API std::vector<std::uint8_t> writePacket(std::uint8_t id, std::uint16_t address,
+                                                   std::span<const std::uint8_t> data);
 // Sync write of one `length`-byte item to several servos: {id, value} pairs,
 // values little-endian in `length` bytes.
-std::vector<std::uint8_t> syncWritePacket(
+HOROPTER_API std::vector<std::uint8_t> syncWritePacket(
     std::uint16_t address, std::uint16_t length,
     const std::vector<std::pair<std::uint8_t, std::int32_t>>& values);
-std::vector<std::uint8_t> syncReadPacket(std::uint16_t address, std::uint16_t length,
-                                         const std::vector<std::uint8_t>& ids);
-std::vector<std::uint8_t> statusPacket(std::uint8_t id, std::uint8_t error,
-                                       std::span<const std::uint8_t> data);
+HOROPTER_API std::vector<std::uint8_t> syncReadPacket(std::uint16_t address, std::uint16_t length,
+                                                      const std::vector<std::uint8_t>& ids);
+HOROPTER_API std::vector<std::uint8_t> statusPacket(std::uint8_t id, std::uint8_t error,
+                                                    std::span<const std::uint8_t> data);
 
 // The status fields of a packet; throws horopter::Error if it is not a status packet.
-Status toStatus(const Packet& packet);
+HOROPTER_API Status toStatus(const Packet& packet);
 // "CRC error", "data range error", ... for a status ERROR byte.
-std::string describeError(std::uint8_t error);
+HOROPTER_API std::string describeError(std::uint8_t error);
 
-std::vector<std::uint8_t> littleEndian(std::int32_t value, std::size_t bytes);
-std::int32_t fromLittleEndian(std::span<const std::uint8_t> bytes);
+HOROPTER_API std::vector<std::uint8_t> littleEndian(std::int32_t value, std::size_t bytes);
+HOROPTER_API std::int32_t fromLittleEndian(std::span<const std::uint8_t> bytes);
 
 // The control-table facts a driver needs for one servo family.
-struct ServoModel {
+struct HOROPTER_API ServoModel {
   std::string family = "X series (XM430/XL430/XH430)";
   int ticksPerTurn = 4096;                     // position resolution
   int centreTick = 2048;                       // 0 rad
@@ -120,10 +123,10 @@ struct ServoModel {
   double velocityUnitRpm = 0.229;
 };
 
-double ticksToRadians(std::int32_t ticks, const ServoModel& model);
-std::int32_t radiansToTicks(double radians, const ServoModel& model);
+HOROPTER_API double ticksToRadians(std::int32_t ticks, const ServoModel& model);
+HOROPTER_API std::int32_t radiansToTicks(double radians, const ServoModel& model);
 // Profile Velocity units for a speed in rad/s (at least 1: 0 means "no limit").
-std::int32_t radPerSecondToVelocityUnits(double radPerSecond, const ServoModel& model);
-double velocityUnitsToRadPerSecond(std::int32_t units, const ServoModel& model);
+HOROPTER_API std::int32_t radPerSecondToVelocityUnits(double radPerSecond, const ServoModel& model);
+HOROPTER_API double velocityUnitsToRadPerSecond(std::int32_t units, const ServoModel& model);
 
 }  // namespace horopter::hw::dxl

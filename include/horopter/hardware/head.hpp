@@ -8,6 +8,8 @@
 // simulated robot for the pipeline is in sim_robot.hpp.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 #include <optional>
 #include <string>
@@ -20,13 +22,13 @@ using Clock = std::chrono::steady_clock;
 // down (the rig frame of include/horopter/synthetic_scene.hpp); vergence is
 // the total angle between the two optical axes (0: parallel), split equally
 // between the eyes on a head with two vergence axes.
-struct HeadAngles {
+struct HOROPTER_API HeadAngles {
   double pan = 0;
   double tilt = 0;
   double vergence = 0;
 };
 
-struct HeadLimits {
+struct HOROPTER_API HeadLimits {
   double panMin = -1.5, panMax = 1.5;
   double tiltMin = -0.8, tiltMax = 0.8;
   bool hasVergence = false;  // a PTU has none: vergence commands are ignored
@@ -35,12 +37,12 @@ struct HeadLimits {
 };
 
 // Measured angles and when they were read.
-struct HeadMeasurement {
+struct HOROPTER_API HeadMeasurement {
   Clock::time_point stamp{};
   HeadAngles angles;
 };
 
-class Head {
+class HOROPTER_API Head {
  public:
   virtual ~Head() = default;
   virtual std::string name() const = 0;

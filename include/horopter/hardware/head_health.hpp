@@ -1,11 +1,13 @@
 // What a head driver reports about its link, beside the measured angles.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <string>
 
 namespace horopter::hw {
 
-struct HeadHealth {
+struct HOROPTER_API HeadHealth {
   bool linkUp = true;       // false after a LinkError or too many failed exchanges in a row
   long exchanges = 0;       // request/reply exchanges that succeeded
   long timeouts = 0;        // replies that never came (after retries)

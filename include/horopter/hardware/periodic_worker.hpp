@@ -3,6 +3,8 @@
 // not make the next ones burst to catch up: the schedule restarts from now.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -11,7 +13,7 @@
 
 namespace horopter::hw {
 
-class PeriodicWorker {
+class HOROPTER_API PeriodicWorker {
  public:
   using Clock = std::chrono::steady_clock;
 

@@ -11,6 +11,8 @@
 // or do not parse are retried and counted; "!P"/"!T" limit hits are reported.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -23,7 +25,7 @@
 
 namespace horopter::hw {
 
-struct PtuHeadOptions {
+struct HOROPTER_API PtuHeadOptions {
   HeadLimits limits;
   double defaultSpeed = 0.5;  // rad/s when command() gets 0
   // Head angle = direction * PTU angle. Our tilt is positive looking down; the
@@ -36,7 +38,7 @@ struct PtuHeadOptions {
   int linkLostAfter = 5;
 };
 
-class PtuHead final : public Head {
+class HOROPTER_API PtuHead final : public Head {
  public:
   // Throws horopter::Error when the unit does not answer the set-up queries.
   PtuHead(std::unique_ptr<ByteTransport> transport, PtuHeadOptions options = {});

@@ -19,6 +19,8 @@
 //             position command has been reached)
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,22 +29,22 @@ namespace horopter::hw::ptu {
 
 enum class Axis { kPan, kTilt };
 
-std::string setPosition(Axis axis, long positions);        // "PP123 "
-std::string queryPosition(Axis axis);                      // "PP "
-std::string setSpeed(Axis axis, long positionsPerSecond);  // "PS1000 "
-std::string querySpeed(Axis axis);                         // "PS "
-std::string queryResolution(Axis axis);                    // "PR "
-std::string queryMinPosition(Axis axis);                   // "PN "
-std::string queryMaxPosition(Axis axis);                   // "PX "
-std::string halt();                                        // "H "
-std::string await();                                       // "A "
-std::string terseFeedback();                               // "FT "
-std::string echoOff();                                     // "ED "
-std::string independentControl();                          // "CI "
+HOROPTER_API std::string setPosition(Axis axis, long positions);        // "PP123 "
+HOROPTER_API std::string queryPosition(Axis axis);                      // "PP "
+HOROPTER_API std::string setSpeed(Axis axis, long positionsPerSecond);  // "PS1000 "
+HOROPTER_API std::string querySpeed(Axis axis);                         // "PS "
+HOROPTER_API std::string queryResolution(Axis axis);                    // "PR "
+HOROPTER_API std::string queryMinPosition(Axis axis);                   // "PN "
+HOROPTER_API std::string queryMaxPosition(Axis axis);                   // "PX "
+HOROPTER_API std::string halt();                                        // "H "
+HOROPTER_API std::string await();                                       // "A "
+HOROPTER_API std::string terseFeedback();                               // "FT "
+HOROPTER_API std::string echoOff();                                     // "ED "
+HOROPTER_API std::string independentControl();                          // "CI "
 
 enum class ReplyKind { kOk, kError, kLimitHit };
 
-struct Reply {
+struct HOROPTER_API Reply {
   ReplyKind kind = ReplyKind::kOk;
   std::string text;  // the value of a query ("1000"), the error message, or "P"/"T"
 };
@@ -50,17 +52,17 @@ struct Reply {
 // Takes one complete reply line (up to CR or LF, terminators dropped) off the
 // front of `buffer`; nullopt while no terminator has arrived. Empty lines are
 // skipped.
-std::optional<std::string> takeLine(std::string& buffer);
+HOROPTER_API std::optional<std::string> takeLine(std::string& buffer);
 
 // Parses a reply line; throws horopter::Error for a line that is neither
 // "*..." nor "!..." (garbage on the line).
-Reply parseReply(std::string_view line);
+HOROPTER_API Reply parseReply(std::string_view line);
 
 // The number in a query reply; throws horopter::Error if it is not one.
-double parseNumber(const Reply& reply);
-long parseInteger(const Reply& reply);
+HOROPTER_API double parseNumber(const Reply& reply);
+HOROPTER_API long parseInteger(const Reply& reply);
 
 // Resolution in arc-seconds per position -> radians per position.
-double arcSecondsToRadians(double arcSeconds);
+HOROPTER_API double arcSecondsToRadians(double arcSeconds);
 
 }  // namespace horopter::hw::ptu

@@ -3,6 +3,8 @@
 // crosses a real tty exactly as with a USB-serial adapter.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <span>
@@ -11,7 +13,7 @@
 
 namespace horopter::hw {
 
-class PseudoTerminal {
+class HOROPTER_API PseudoTerminal {
  public:
   PseudoTerminal();  // throws horopter::Error if no pty can be made
   ~PseudoTerminal();

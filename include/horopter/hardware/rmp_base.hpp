@@ -14,6 +14,8 @@
 // step(now) with the time you choose.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -26,7 +28,7 @@
 
 namespace horopter::hw {
 
-struct RmpBaseOptions {
+struct HOROPTER_API RmpBaseOptions {
   rmp::Scaling scaling = rmp::scalingRmp200();
   BaseSafetyLimits limits;
   std::chrono::milliseconds period{20};  // motion frame rate; 5 .. 200 ms
@@ -36,7 +38,7 @@ struct RmpBaseOptions {
   std::function<Clock::time_point()> clock = [] { return Clock::now(); };
 };
 
-struct BaseHealth {
+struct HOROPTER_API BaseHealth {
   bool linkUp = true;        // false after a LinkError from the transport
   bool statusFresh = false;  // a complete status series within statusTimeout
   bool watchdogTripped = false;
@@ -51,7 +53,7 @@ struct BaseHealth {
   BaseVelocity lastSent;  // what the last motion frame asked for
 };
 
-class RmpBase final : public Base {
+class HOROPTER_API RmpBase final : public Base {
  public:
   // Throws horopter::Error for bad options.
   RmpBase(std::unique_ptr<CanTransport> transport, RmpBaseOptions options = {});

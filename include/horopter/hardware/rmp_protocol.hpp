@@ -44,6 +44,8 @@
 //   ck: sum of bytes 0..16, carries folded twice into 8 bits, then two's complement.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -64,7 +66,7 @@ constexpr std::uint32_t kMotorStatusId = 0x680;
 constexpr std::size_t kUsbFrameSize = 18;
 
 // The one place where SI units meet counts (libsegwayrmp SetConstantsBySegwayType_).
-struct Scaling {
+struct HOROPTER_API Scaling {
   const char* model;
   double countsPerMps;
   double countsPerDegPerS;
@@ -72,10 +74,10 @@ struct Scaling {
   double countsPerRev;
   double countsPerNm;
 };
-Scaling scalingRmp200();  // RMP 200 and 400: 332, 7.8, 33215, 112644, 1094
-Scaling scalingRmp100();  // RMP 50 and 100:  401, 7.8, 40181, 117031, 1463
+HOROPTER_API Scaling scalingRmp200();  // RMP 200 and 400: 332, 7.8, 33215, 112644, 1094
+HOROPTER_API Scaling scalingRmp100();  // RMP 50 and 100:  401, 7.8, 40181, 117031, 1463
 // "rmp200", "rmp400", "rmp100", "rmp50"; throws horopter::Error otherwise.
-Scaling scalingByName(const std::string& name);
+HOROPTER_API Scaling scalingByName(const std::string& name);
 
 enum class ConfigCommand : std::uint16_t {
   kNone = 0,
@@ -90,20 +92,21 @@ enum class ConfigCommand : std::uint16_t {
 };
 
 // The velocity/turn command; values beyond int16 are clamped (the caller limits first).
-CanFrame encodeMotion(const BaseVelocity& velocity, const Scaling& scaling);
-CanFrame encodeConfig(ConfigCommand command, std::uint16_t parameter);
+HOROPTER_API CanFrame encodeMotion(const BaseVelocity& velocity, const Scaling& scaling);
+HOROPTER_API CanFrame encodeConfig(ConfigCommand command, std::uint16_t parameter);
 // The counts a command frame carries (for the simulator and the tests).
-struct MotionCounts {
+struct HOROPTER_API MotionCounts {
   std::int16_t velocity = 0;
   std::int16_t yawRate = 0;
   std::uint16_t configCommand = 0;
   std::uint16_t configParameter = 0;
 };
-MotionCounts decodeMotion(const CanFrame& frame);  // throws if not a 0x413 frame of 8 bytes
-BaseVelocity countsToVelocity(const MotionCounts& counts, const Scaling& scaling);
+HOROPTER_API MotionCounts
+decodeMotion(const CanFrame& frame);  // throws if not a 0x413 frame of 8 bytes
+HOROPTER_API BaseVelocity countsToVelocity(const MotionCounts& counts, const Scaling& scaling);
 
 // Everything the status series reports, in SI units (radians, not degrees).
-struct Status {
+struct HOROPTER_API Status {
   double pitch = 0, pitchRate = 0, roll = 0, rollRate = 0;       // rad, rad/s
   double leftWheelSpeed = 0, rightWheelSpeed = 0;                // m/s
   double yawRate = 0;                                            // rad/s, positive left
@@ -123,24 +126,25 @@ struct Status {
 // Decodes one status frame into `status`; false for ids outside 0x400..0x407
 // (other traffic on the bus). Throws horopter::Error for a status id with the
 // wrong length.
-bool decodeStatusFrame(const CanFrame& frame, const Scaling& scaling, Status& status);
+HOROPTER_API bool decodeStatusFrame(const CanFrame& frame, const Scaling& scaling, Status& status);
 // The 0x680 motor status: true when the motors are enabled, false when the
 // RMP's own e-stop is pressed; nullopt for any other frame.
-std::optional<bool> decodeMotorStatus(const CanFrame& frame);
-CanFrame encodeMotorStatus(bool motorsEnabled);
+HOROPTER_API std::optional<bool> decodeMotorStatus(const CanFrame& frame);
+HOROPTER_API CanFrame encodeMotorStatus(bool motorsEnabled);
 // The eight frames of a series (for the simulator), the inverse of the decoder
 // up to the counts' resolution.
-std::array<CanFrame, 8> encodeStatusFrames(const Status& status, const Scaling& scaling);
+HOROPTER_API std::array<CanFrame, 8> encodeStatusFrames(const Status& status,
+                                                        const Scaling& scaling);
 
 // USB framing.
-std::uint8_t usbChecksum(std::span<const std::uint8_t> first17);
-std::array<std::uint8_t, kUsbFrameSize> encodeUsbToRmp(const CanFrame& frame,
-                                                       std::uint8_t channel = 0);
-std::array<std::uint8_t, kUsbFrameSize> encodeUsbFromRmp(const CanFrame& frame,
-                                                         std::uint8_t channel = 0xAA);
+HOROPTER_API std::uint8_t usbChecksum(std::span<const std::uint8_t> first17);
+HOROPTER_API std::array<std::uint8_t, kUsbFrameSize> encodeUsbToRmp(const CanFrame& frame,
+                                                                    std::uint8_t channel = 0);
+HOROPTER_API std::array<std::uint8_t, kUsbFrameSize> encodeUsbFromRmp(const CanFrame& frame,
+                                                                      std::uint8_t channel = 0xAA);
 
 enum class UsbOutcome { kFrame, kNeedMore, kCorrupt };
-struct UsbParse {
+struct HOROPTER_API UsbParse {
   UsbOutcome outcome = UsbOutcome::kNeedMore;
   CanFrame frame;
   std::uint8_t channel = 0;
@@ -148,6 +152,6 @@ struct UsbParse {
   std::string error;
 };
 // The first RMP -> host frame in `buffer` (resynchronises on F0 55 AA|BB).
-UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer);
+HOROPTER_API UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer);
 
 }  // namespace horopter::hw::rmp

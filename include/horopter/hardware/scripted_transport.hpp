@@ -3,6 +3,8 @@
 // recorded (and the reply withheld), and the link can be cut.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <deque>
 #include <mutex>
 #include <string>
@@ -12,7 +14,7 @@
 
 namespace horopter::hw {
 
-class ScriptedTransport final : public ByteTransport {
+class HOROPTER_API ScriptedTransport final : public ByteTransport {
  public:
   // When `request` is written, `reply` becomes readable (empty: silence).
   void expect(std::vector<std::uint8_t> request, std::vector<std::uint8_t> reply);

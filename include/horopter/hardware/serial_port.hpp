@@ -3,6 +3,8 @@
 // side of a pseudo-terminal (the simulated devices' wire).
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <string>
 
 #include "horopter/hardware/transport.hpp"
@@ -11,13 +13,13 @@ namespace horopter::hw {
 
 enum class Parity { kNone, kEven, kOdd };
 
-struct SerialOptions {
+struct HOROPTER_API SerialOptions {
   int baud = 57600;  // 9600 .. 4000000, one of the standard termios rates
   Parity parity = Parity::kNone;
   int stopBits = 1;  // 1 or 2
 };
 
-class SerialPort final : public ByteTransport {
+class HOROPTER_API SerialPort final : public ByteTransport {
  public:
   // Throws horopter::Error naming the path and the reason (missing device,
   // permission: "add yourself to the dialout group", unsupported baud).
@@ -37,6 +39,6 @@ class SerialPort final : public ByteTransport {
 };
 
 // The termios speed constant for a baud rate; throws for a non-standard rate.
-unsigned baudConstant(int baud);
+HOROPTER_API unsigned baudConstant(int baud);
 
 }  // namespace horopter::hw

@@ -3,6 +3,8 @@
 // stage writes it for whatever robot it drives.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <fstream>
 #include <mutex>
 #include <optional>
@@ -15,7 +17,7 @@
 
 namespace horopter::hw {
 
-struct TelemetrySample {
+struct HOROPTER_API TelemetrySample {
   double t = 0;  // seconds since the robot started
   std::optional<HeadAngles> headCommanded;
   std::optional<HeadMeasurement> headMeasured;
@@ -29,14 +31,14 @@ struct TelemetrySample {
 
 // Where samples come from: a robot that knows its commands, measurements,
 // odometry and faults (hw::SimulatedRobot; a real robot's wiring likewise).
-class TelemetrySource {
+class HOROPTER_API TelemetrySource {
  public:
   virtual ~TelemetrySource() = default;
   virtual TelemetrySample sample() const = 0;
 };
 
 // JSON lines: one object per sample, flushed per line (a crash keeps what was written).
-class TelemetryLog {
+class HOROPTER_API TelemetryLog {
  public:
   explicit TelemetryLog(const std::string& path);  // throws horopter::Error if it cannot write
   void write(const TelemetrySample& sample);

@@ -4,6 +4,8 @@
 // a pseudo-terminal with a simulated device, or a scripted fake.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <array>
 #include <chrono>
 #include <cstddef>
@@ -18,13 +20,13 @@ namespace horopter::hw {
 
 // The link itself failed (device unplugged, port closed, interface down):
 // distinct from a corrupt or missing reply, which drivers retry.
-class LinkError : public Error {
+class HOROPTER_API LinkError : public Error {
  public:
   explicit LinkError(const std::string& what) : Error(what) {}
 };
 
 // A byte stream: a serial port, a pseudo-terminal, a scripted fake.
-class ByteTransport {
+class HOROPTER_API ByteTransport {
  public:
   virtual ~ByteTransport() = default;
   // Writes every byte or throws LinkError.
@@ -39,7 +41,7 @@ class ByteTransport {
 };
 
 // One classic CAN 2.0A frame (11-bit identifier, up to 8 data bytes).
-struct CanFrame {
+struct HOROPTER_API CanFrame {
   std::uint32_t id = 0;
   std::uint8_t length = 8;
   std::array<std::uint8_t, 8> data{};
@@ -48,7 +50,7 @@ struct CanFrame {
 
 // A CAN bus endpoint: SocketCAN, the RMP's USB framing on a serial device,
 // or an in-process bus shared with a simulated device.
-class CanTransport {
+class HOROPTER_API CanTransport {
  public:
   virtual ~CanTransport() = default;
   // Sends one frame or throws LinkError.

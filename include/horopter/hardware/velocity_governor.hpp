@@ -13,13 +13,15 @@
 //     received meanwhile are dropped, so the base does not lurch off on release.
 #pragma once
 
+#include "horopter/export.hpp"
+
 #include <chrono>
 
 #include "horopter/hardware/base.hpp"
 
 namespace horopter::hw {
 
-struct BaseSafetyLimits {
+struct HOROPTER_API BaseSafetyLimits {
   double maxLinear = 0.5;                         // m/s, (0, 10]
   double maxAngular = 1.0;                        // rad/s, (0, 10]
   double maxLinearAccel = 0.5;                    // m/s^2, (0, 20]
@@ -29,9 +31,9 @@ struct BaseSafetyLimits {
 };
 
 // Throws horopter::Error naming the first value out of range.
-void validate(const BaseSafetyLimits& limits);
+HOROPTER_API void validate(const BaseSafetyLimits& limits);
 
-class VelocityGovernor {
+class HOROPTER_API VelocityGovernor {
  public:
   explicit VelocityGovernor(const BaseSafetyLimits& limits);
 
