@@ -1,7 +1,10 @@
 // The run summary as JSON, and the Chrome trace of a run.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "horopter/error.hpp"
 #include "horopter/pipeline.hpp"
@@ -36,20 +39,26 @@ std::string number(double v) {
 }  // namespace
 
 std::string summaryJson(const RunSummary& s) {
-  std::ostringstream out;
-  out << "{\"frames\": " << s.completed << ", \"captured\": " << s.captured
-      << ", \"dropped\": " << s.dropped << ", \"seconds\": " << number(s.seconds)
-      << ", \"fps\": " << number(s.fps()) << ", \"latency_ms\": " << number(s.meanLatencyMs)
-      << ", \"max_latency_ms\": " << number(s.maxLatencyMs)
-      << ", \"stopped_by_request\": " << (s.stoppedByRequest ? "true" : "false")
-      << ", \"stages\": {";
-  for (std::size_t i = 0; i < s.stages.size(); ++i) {
-    const StageSummary& st = s.stages[i];
-    out << (i ? ", " : "") << quoted(st.name) << ": {\"frames\": " << st.frames
-        << ", \"ms\": " << number(st.meanMs) << ", \"fps\": " << number(st.fps()) << "}";
-  }
-  out << "}}";
-  return out.str();
+  // Times to the microsecond; a value that is not finite (no frame timed)
+  // is null, never a bare nan, which no JSON reader takes.
+  const auto ms = [](double v) -> nlohmann::ordered_json {
+    if (!std::isfinite(v)) return nullptr;
+    return std::round(v * 1000.0) / 1000.0;
+  };
+  nlohmann::ordered_json j;
+  j["frames"] = s.completed;
+  j["captured"] = s.captured;
+  j["dropped"] = s.dropped;
+  j["seconds"] = ms(s.seconds);
+  j["fps"] = ms(s.fps());
+  j["latency_ms"] = ms(s.meanLatencyMs);
+  j["max_latency_ms"] = ms(s.maxLatencyMs);
+  j["stopped_by_request"] = s.stoppedByRequest;
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  for (const StageSummary& st : s.stages)
+    stages[st.name] = {{"frames", st.frames}, {"ms", ms(st.meanMs)}, {"fps", ms(st.fps())}};
+  j["stages"] = std::move(stages);
+  return j.dump();
 }
 
 void writeChromeTrace(const RunSummary& s, const std::string& path) {
