@@ -1,5 +1,6 @@
 // frameDigest: FNV-1a over what a frame's stages produced; see
 // horopter/pipeline_builder.hpp.
+#include <cstdio>
 #include <cstring>
 
 #include "horopter/pipeline_builder.hpp"
@@ -58,6 +59,12 @@ std::uint64_t frameDigest(const Frame& frame) {
   mixPart(h, frame.body.leftHand);
   mixPart(h, frame.body.rightHand);
   return h;
+}
+
+std::string digestText(std::uint64_t digest) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digest));
+  return hex;
 }
 
 std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frame) {

@@ -378,9 +378,7 @@ int runPipeline(Args& args) {
   // The frames' digest beside the summary: the same configuration gives the
   // same digest from Python and the C API (tests/app/pipeline_parity_test).
   nlohmann::ordered_json summaryObject = nlohmann::ordered_json::parse(summaryJson(summary));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digest));
-  summaryObject["frames_digest"] = hex;
+  summaryObject["frames_digest"] = digestText(digest);
   const std::string json = summaryObject.dump();
   std::ofstream(job.outDir + "/summary.json") << json << "\n";
   if (!job.trace.empty()) writeChromeTrace(summary, job.trace);

@@ -17,16 +17,11 @@
 
 #include "horopter/export.hpp"
 
-#include <chrono>
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 
-#include "horopter/capture.hpp"
 #include "horopter/geometry.hpp"
 #include "horopter/hardware/head.hpp"
 #include "horopter/pipeline.hpp"

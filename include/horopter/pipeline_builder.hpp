@@ -142,5 +142,7 @@ HOROPTER_API AssembledPipeline buildPipeline(const PipelineConfig& config,
 HOROPTER_API std::uint64_t frameDigest(const Frame& frame);
 // Frame digests folded in frame order.
 HOROPTER_API std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frameDigest);
+// A digest as the front ends print it: 16 lowercase hex digits.
+HOROPTER_API std::string digestText(std::uint64_t digest);
 
 }  // namespace horopter

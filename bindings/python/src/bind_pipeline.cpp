@@ -8,7 +8,6 @@
 
 #include <atomic>
 #include <condition_variable>
-#include <cstdio>
 #include <deque>
 #include <exception>
 #include <mutex>
@@ -87,9 +86,7 @@ class PipelineRun {
   py::object digest() const {
     std::lock_guard lock(mutex_);
     if (!finished_) return py::none();
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digest_));
-    return py::str(hex);
+    return py::str(digestText(digest_));
   }
 
  private:
