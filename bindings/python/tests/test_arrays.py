@@ -95,3 +95,17 @@ def test_bad_parameters_raise_horopter_error(grey_pair):
         horopter.StereoParams(blocksize=9)
     with pytest.raises(horopter.Error, match="same size|size"):
         horopter.StereoMatcher(numDisparities=32).compute(left, right[:, :200])
+
+
+def test_stereo_options_come_from_the_librarys_table():
+    options = {o["name"]: o for o in horopter.stereo_options()}
+    assert options["numDisparities"]["flag"] == "--num-disparities"
+    assert options["numDisparities"]["min"] == 16 and options["numDisparities"]["max"] == 1024
+    assert options["numDisparities"]["default"] == horopter.StereoParams().numDisparities
+    # Every option is a keyword, and out of its range an error naming it.
+    for name, o in options.items():
+        assert getattr(horopter.StereoParams(**{name: o["default"]}), name) == o["default"]
+        with pytest.raises(horopter.Error, match=name):
+            horopter.StereoParams(**{name: o["max"] + 1})
+    with pytest.raises(TypeError, match="must be an int"):
+        horopter.StereoParams(numDisparities=True)
