@@ -7,9 +7,9 @@
 
 #include "bench_inputs.hpp"
 #include "bench_support.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "registration.hpp"
 
 namespace horopter::bench {

@@ -4,7 +4,7 @@
 // view. Default parameters at each setting.
 #include "bench_inputs.hpp"
 #include "bench_support.hpp"
-#include "horopter/frontend.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "registration.hpp"
 
 namespace horopter::bench {

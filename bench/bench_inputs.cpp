@@ -5,8 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/geometry.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter::bench {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
 
 namespace horopter::bench {
 

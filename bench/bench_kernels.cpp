@@ -14,7 +14,7 @@
 
 #include "bench_inputs.hpp"
 #include "bench_support.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "registration.hpp"
 
 namespace horopter::bench {

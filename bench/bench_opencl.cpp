@@ -24,10 +24,10 @@
 
 #include "bench_inputs.hpp"
 #include "bench_support.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/opencl_frontend.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter::bench {
 

@@ -7,11 +7,11 @@
 // One iteration is a batch of 30 frames; frames/s counts frames.
 #include <benchmark/benchmark.h>
 
-#include "horopter/backend.hpp"
-#include "horopter/capture.hpp"
-#include "horopter/pipeline.hpp"
+#include "horopter/app/frame.hpp"
+#include "horopter/app/vision_stages.hpp"
+#include "horopter/kernels/backend.hpp"
 #include "horopter/sim/synthetic_source.hpp"
-#include "horopter/vision_stages.hpp"
+#include "horopter/vision/capture.hpp"
 
 namespace {
 

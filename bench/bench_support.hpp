@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::bench {
 

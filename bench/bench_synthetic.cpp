@@ -12,7 +12,7 @@
 #include <cmath>
 #include <opencv2/core/utility.hpp>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace {
 

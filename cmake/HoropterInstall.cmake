@@ -1,5 +1,5 @@
 # What `cmake --install` ships:
-#   include/horopter/          the public headers (C++ and horopter.h)
+#   include/horopter/          the public headers (C++ by layer, and horopter.h)
 #   lib/libhoropter.so         the engine, kernels and C API
 #   bin/horopter               the command-line tool
 #   lib/cmake/horopter/        find_package(horopter) -> horopter::horopter
@@ -13,9 +13,13 @@ install(TARGETS horopter_library EXPORT horopterTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS horopter RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The simulator's and the evaluations' headers stay behind: libhoropter has
+# neither (they are the tool's and the Python module's).
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/horopter"
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+  FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h"
+  PATTERN "sim" EXCLUDE
+  PATTERN "eval" EXCLUDE)
 
 install(EXPORT horopterTargets
   NAMESPACE horopter::

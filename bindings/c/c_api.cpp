@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "guarded.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/horopter.h"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/vision/calibration.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
 
 struct horopter_matcher {
   horopter::StereoFrontend frontend;

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "guarded.hpp"
+#include "horopter/app/pipeline_builder.hpp"
 #include "horopter/horopter.h"
-#include "horopter/pipeline_builder.hpp"
 
 using namespace horopter::c_api;
 

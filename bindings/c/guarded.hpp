@@ -7,9 +7,9 @@
 #include <new>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/horopter.h"
-#include "horopter/stereo_params.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 // Shared by the C API's files, exported by none (libhoropter.map exports
 // the horopter namespace; these helpers are not its API).

@@ -1,9 +1,9 @@
 // frameDigest: FNV-1a over what a frame's stages produced; see
-// horopter/pipeline_builder.hpp.
+// horopter/app/pipeline_builder.hpp.
 #include <cstdio>
 #include <cstring>
 
-#include "horopter/pipeline_builder.hpp"
+#include "horopter/app/pipeline_builder.hpp"
 
 namespace horopter {
 

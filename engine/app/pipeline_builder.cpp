@@ -1,14 +1,15 @@
 // buildPipeline: the frame pipeline from one configuration; see
-// horopter/pipeline_builder.hpp.
-#include "horopter/pipeline_builder.hpp"
+// horopter/app/pipeline_builder.hpp.
+#include "horopter/app/pipeline_builder.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/movement.hpp"
+#include "horopter/app/interaction_stages.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/movement/movement.hpp"
+#include "horopter/vision/calibration.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter {
 
@@ -101,7 +102,7 @@ AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
   if (hooks.openSource) opened = hooks.openSource(c, steerable);
   if (!opened) {
     opened.emplace();
-    opened->source = openSource(c.source, c.capture);
+    opened->source = frameSourceOf(openSource(c.source, c.capture));
   }
   if (!opened->source) throw Error("the source opener for '" + c.source + "' opened nothing");
   parts->closedLoop = steerable && opened->headControl;

@@ -1,11 +1,11 @@
-#include "horopter/robot_stage.hpp"
+#include "horopter/app/robot_stage.hpp"
 
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/movement/movement.hpp"
 
 namespace horopter {
 

@@ -1,18 +1,18 @@
 // The front end's pipeline stages. Each stage's output is copied into the
 // frame: the front end reuses its buffers for the next frame while this one
 // is still in flight downstream.
-#include "horopter/vision_stages.hpp"
+#include "horopter/app/vision_stages.hpp"
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
-#include "horopter/opencl_frontend.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 

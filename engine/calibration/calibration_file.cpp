@@ -4,8 +4,8 @@
 #include <opencv2/core/persistence.hpp>
 #include <string>
 
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
 
 namespace horopter {
 

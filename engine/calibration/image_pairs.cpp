@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <map>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

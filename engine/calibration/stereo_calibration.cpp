@@ -5,8 +5,8 @@
 #include <opencv2/calib3d.hpp>
 #include <string>
 
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
 
 namespace horopter {
 

@@ -3,8 +3,8 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
 
 namespace horopter {
 

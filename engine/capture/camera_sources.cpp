@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::capture {
 
@@ -69,7 +69,7 @@ CameraPairSource::CameraPairSource(const std::string& leftDevice, const std::str
   if (!(options.maxSkewMs > 0)) throw Error("the maximum skew between the cameras must be > 0 ms");
 }
 
-bool CameraPairSource::next(Frame& frame) {
+bool CameraPairSource::next(StereoFrame& frame) {
   const auto timeout = millis(options_.stallTimeoutMs);
   const auto skew = std::chrono::duration<double, std::milli>(options_.maxSkewMs);
   CameraReader::Shot l = left_.newerThan(lastLeft_, timeout);
@@ -100,7 +100,7 @@ bool CameraPairSource::next(Frame& frame) {
 SideBySideSource::SideBySideSource(const std::string& device, const CaptureOptions& options)
     : options_(options), camera_(device, options) {}
 
-bool SideBySideSource::next(Frame& frame) {
+bool SideBySideSource::next(StereoFrame& frame) {
   const CameraReader::Shot shot = camera_.newerThan(last_, millis(options_.stallTimeoutMs));
   last_ = shot.sequence;
   if (shot.image.cols % 2 != 0)

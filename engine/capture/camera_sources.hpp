@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "horopter/capture.hpp"
+#include "horopter/vision/capture.hpp"
 
 namespace horopter::capture {
 
@@ -46,12 +46,12 @@ class CameraReader {
 
 // Two cameras whose frames are paired by timestamp, within maxSkewMs; frames
 // that find no partner are counted as dropped.
-class CameraPairSource : public FrameSource {
+class CameraPairSource : public StereoSource {
  public:
   CameraPairSource(const std::string& leftDevice, const std::string& rightDevice,
                    const CaptureOptions& options);
   std::string name() const override { return "camera"; }
-  bool next(Frame& frame) override;
+  bool next(StereoFrame& frame) override;
   std::int64_t unpairedDrops() const { return drops_; }
 
  private:
@@ -61,11 +61,11 @@ class CameraPairSource : public FrameSource {
 };
 
 // One camera delivering both views side by side in one image.
-class SideBySideSource : public FrameSource {
+class SideBySideSource : public StereoSource {
  public:
   SideBySideSource(const std::string& device, const CaptureOptions& options);
   std::string name() const override { return "sbs"; }
-  bool next(Frame& frame) override;
+  bool next(StereoFrame& frame) override;
 
  private:
   CaptureOptions options_;

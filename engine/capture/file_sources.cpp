@@ -6,7 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::capture {
 
@@ -68,7 +68,7 @@ DirectorySource::DirectorySource(const std::string& dir) : dir_(dir) {
                 std::to_string(right_.size()) + " right images: each left needs its right");
 }
 
-bool DirectorySource::next(Frame& frame) {
+bool DirectorySource::next(StereoFrame& frame) {
   if (next_ >= left_.size()) return false;
   frame.left = readImage(left_[next_]);
   frame.right = readImage(right_[next_]);
@@ -87,7 +87,7 @@ VideoPairSource::VideoPairSource(const std::string& leftPath, const std::string&
   }
 }
 
-bool VideoPairSource::next(Frame& frame) {
+bool VideoPairSource::next(StereoFrame& frame) {
   const bool gotLeft = left_.read(frame.left);
   const bool gotRight = right_.read(frame.right);
   if (!gotLeft && !gotRight) return false;

@@ -6,16 +6,16 @@
 #include <string>
 #include <vector>
 
-#include "horopter/pipeline.hpp"
+#include "horopter/vision/capture.hpp"
 
 namespace horopter::capture {
 
 // A folder of left/right images, paired in sorted order.
-class DirectorySource : public FrameSource {
+class DirectorySource : public StereoSource {
  public:
   explicit DirectorySource(const std::string& dir);
   std::string name() const override { return "dir:" + dir_; }
-  bool next(Frame& frame) override;
+  bool next(StereoFrame& frame) override;
 
  private:
   std::string dir_;
@@ -24,11 +24,11 @@ class DirectorySource : public FrameSource {
 };
 
 // Two video files read frame by frame; they must end together.
-class VideoPairSource : public FrameSource {
+class VideoPairSource : public StereoSource {
  public:
   VideoPairSource(const std::string& leftPath, const std::string& rightPath);
   std::string name() const override { return "video"; }
-  bool next(Frame& frame) override;
+  bool next(StereoFrame& frame) override;
 
  private:
   std::string leftPath_, rightPath_;

@@ -1,8 +1,8 @@
 // openSource: a capture source from its spec.
 #include "capture/camera_sources.hpp"
 #include "capture/file_sources.hpp"
-#include "horopter/capture.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/capture.hpp"
 
 namespace horopter {
 
@@ -19,7 +19,9 @@ std::pair<std::string, std::string> twoPaths(const std::string& list, const std:
 
 }  // namespace
 
-std::unique_ptr<FrameSource> openSource(const std::string& spec, const CaptureOptions& options) {
+StereoSource::~StereoSource() = default;
+
+std::unique_ptr<StereoSource> openSource(const std::string& spec, const CaptureOptions& options) {
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);

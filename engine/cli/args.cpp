@@ -4,8 +4,8 @@
 #include <sstream>
 #include <thread>
 
-#include "horopter/error.hpp"
-#include "horopter/option_table.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/core/option_table.hpp"
 
 namespace horopter::cli {
 

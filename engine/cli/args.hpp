@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/stereo_params.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::cli {
 
@@ -18,7 +18,7 @@ class Args {
   bool flag(const std::string& name);
   // The value after `name` ("--x 3" or "--x=3"), removed; nullopt if absent.
   std::optional<std::string> value(const std::string& name);
-  // Numbers parse strictly (horopter/option_table.hpp): "2junk", "abc", "nan"
+  // Numbers parse strictly (horopter/core/option_table.hpp): "2junk", "abc", "nan"
   // and values outside [min, max] are errors naming the flag.
   int intValue(const std::string& name, int fallback, int min = -1000000000, int max = 1000000000);
   double doubleValue(const std::string& name, double fallback, double min = -1e300,

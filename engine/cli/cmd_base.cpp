@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/rmp_base.hpp"
 #include "horopter/hardware/serial_port.hpp"

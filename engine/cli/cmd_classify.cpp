@@ -6,12 +6,13 @@
 #include <string>
 
 #include "commands.hpp"
-#include "horopter/body_track_file.hpp"
-#include "horopter/error.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/movement_scoring.hpp"
-#include "horopter/movement_training.hpp"
-#include "horopter/tracking_eval.hpp"
+#include "horopter/app/interaction_stages.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/movement_scoring.hpp"
+#include "horopter/eval/movement_training.hpp"
+#include "horopter/eval/tracking_eval.hpp"
+#include "horopter/movement/body_track_file.hpp"
+#include "horopter/movement/movement.hpp"
 
 namespace horopter::cli {
 

@@ -4,8 +4,8 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/devices.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/devices.hpp"
 
 namespace horopter::cli {
 

@@ -9,11 +9,11 @@
 
 #include "commands.hpp"
 #include "default_input.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
 
 namespace horopter::cli {

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/stereo_eval.hpp"
 
 namespace horopter::cli {
 

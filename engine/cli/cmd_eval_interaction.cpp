@@ -9,9 +9,9 @@
 #include "commands.hpp"
 #include "eval/interaction_report.hpp"
 #include "eval/seed_ranges.hpp"
-#include "horopter/error.hpp"
-#include "horopter/interaction_eval.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/interaction_eval.hpp"
+#include "horopter/eval/movement_training.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {

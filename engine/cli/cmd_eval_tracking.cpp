@@ -18,8 +18,8 @@
 #include "eval/bootstrap.hpp"
 #include "eval/parallel_trials.hpp"
 #include "eval/seed_ranges.hpp"
-#include "horopter/error.hpp"
-#include "horopter/tracking_eval.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/tracking_eval.hpp"
 #include "report_format.hpp"
 #include "run_annotation.hpp"
 

@@ -11,9 +11,9 @@
 
 #include "commands.hpp"
 #include "geometry/zone_figure.hpp"
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter::cli {
 

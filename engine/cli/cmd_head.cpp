@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/ptu_head.hpp"
 #include "horopter/hardware/serial_port.hpp"

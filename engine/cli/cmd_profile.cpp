@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencl_frontend.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter::cli {
 

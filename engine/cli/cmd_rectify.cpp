@@ -7,8 +7,8 @@
 
 #include "calibration/image_pairs.hpp"
 #include "commands.hpp"
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
 
 namespace horopter::cli {
 

@@ -18,12 +18,12 @@
 #include <nlohmann/json.hpp>
 #include "commands.hpp"
 
-#include "horopter/error.hpp"
+#include "horopter/app/pipeline_builder.hpp"
+#include "horopter/app/robot_stage.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/core/option_table.hpp"
+#include "horopter/eval/movement_training.hpp"
 #include "horopter/hardware/sim_robot.hpp"
-#include "horopter/movement_training.hpp"
-#include "horopter/option_table.hpp"
-#include "horopter/pipeline_builder.hpp"
-#include "horopter/robot_stage.hpp"
 #include "horopter/sim/synthetic_source.hpp"
 #include "run_annotation.hpp"
 

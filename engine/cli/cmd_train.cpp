@@ -4,9 +4,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
-#include "horopter/movement_classifier.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/movement_training.hpp"
+#include "horopter/movement/movement_classifier.hpp"
 
 namespace horopter::cli {
 
@@ -15,7 +15,8 @@ int runTrain(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
     std::cout
         << "Usage: horopter train [--seed S] [--sequences N] [-o model.hmm] [options]\n\n"
-           "Learns the Bayesian movement classifier (include/horopter/movement_classifier.hpp)\n"
+           "Learns the Bayesian movement classifier "
+           "(include/horopter/movement/movement_classifier.hpp)\n"
            "from N labelled sequences of the synthetic scene's movement generator, without\n"
            "rendering: the main person's head and hands projected into the left image with\n"
            "tracking-like noise, varied speed, amplitude, handedness and head pose (seeds S to\n"

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::cli {
 

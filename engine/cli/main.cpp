@@ -5,7 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace {
 

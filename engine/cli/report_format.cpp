@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::cli {
 

@@ -3,12 +3,13 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/detection.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/robot_stage.hpp"
-#include "horopter/synthetic_scene.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/app/robot_stage.hpp"
+#include "horopter/interaction/detection.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/movement/movement.hpp"
+#include "horopter/sim/sim_frame.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
 
 namespace horopter::cli {
@@ -134,7 +135,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
       label(panel, text, line++);
     }
   }
-  if (const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth)) {
+  if (const synth::FrameTruth* truth = sim::truthOf(frame)) {
     std::snprintf(text, sizeof text, "head pan %.1f tilt %.1f deg, fixation %.2f m",
                   truth->head.pan * 57.2958, truth->head.tilt * 57.2958, truth->fixationDistanceM);
     label(panel, text, line++);

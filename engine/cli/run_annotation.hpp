@@ -4,8 +4,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "horopter/pipeline.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/app/frame.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::cli {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "synthetic/rng.hpp"
 
 namespace horopter::eval {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::eval {
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/bootstrap.hpp"
-#include "horopter/interaction_eval.hpp"
+#include "horopter/eval/interaction_eval.hpp"
 
 namespace horopter::eval {
 

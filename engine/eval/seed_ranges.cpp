@@ -1,7 +1,7 @@
 // See seed_ranges.hpp.
 #include "eval/seed_ranges.hpp"
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::eval {
 

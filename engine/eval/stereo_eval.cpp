@@ -1,4 +1,4 @@
-#include "horopter/stereo_eval.hpp"
+#include "horopter/eval/stereo_eval.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 

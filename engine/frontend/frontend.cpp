@@ -1,10 +1,11 @@
-#include "horopter/frontend.hpp"
+#include "horopter/vision/frontend.hpp"
 
 #include <algorithm>
 #include <chrono>
 
-#include "horopter/error.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "schedule/thread_pool.hpp"
 
 namespace horopter {
 
@@ -26,6 +27,14 @@ StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& m
       pool_(std::make_unique<ThreadPool>(threads)) {
   validate(stereo_);
   validate(median_);
+}
+
+StereoFrontend::~StereoFrontend() = default;
+StereoFrontend::StereoFrontend(StereoFrontend&&) noexcept = default;
+StereoFrontend& StereoFrontend::operator=(StereoFrontend&&) noexcept = default;
+
+int StereoFrontend::threads() const {
+  return pool_->threads();
 }
 
 void StereoFrontend::allocate(int width, int height) {

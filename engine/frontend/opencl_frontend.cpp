@@ -1,11 +1,11 @@
-#include "horopter/opencl_frontend.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
 
 #include <algorithm>
 #include <iostream>
 
 #include "common/cpu_backend.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "opencl/opencl_backend.hpp"
 #include "opencl/pipeline.hpp"
 

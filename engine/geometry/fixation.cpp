@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 
 #include "geometry/geometry_checks.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter {
 

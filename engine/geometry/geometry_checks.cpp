@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::geometry_detail {
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "horopter/geometry.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter::geometry_detail {
 

@@ -1,5 +1,5 @@
 // The Vieth-Mueller circle as horopterMask's per-column threshold table; the
-// rounding rule is stated in include/horopter/geometry.hpp.
+// rounding rule is stated in include/horopter/vision/geometry.hpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -7,8 +7,8 @@
 #include <string>
 
 #include "geometry/geometry_checks.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter {
 

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "geometry/geometry_checks.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter {
 

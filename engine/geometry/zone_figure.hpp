@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "horopter/geometry.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter {
 

@@ -3,7 +3,7 @@
 // search range it has no disparity: no zone there, so the detector finds
 // nothing, though the left image still shows the hand. The tracker then
 // looks for the hand's last patch seen with stereo around its prediction.
-// Internal to engine/interaction; see horopter/tracking.hpp for the options.
+// Internal to engine/interaction; see horopter/interaction/tracking.hpp for the options.
 #pragma once
 
 #include <opencv2/core.hpp>

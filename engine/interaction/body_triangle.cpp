@@ -1,9 +1,9 @@
-// The body triangle head / left hand / right hand; see horopter/detection.hpp.
+// The body triangle head / left hand / right hand; see horopter/interaction/detection.hpp.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "horopter/detection.hpp"
+#include "horopter/interaction/detection.hpp"
 
 namespace horopter {
 

@@ -1,6 +1,6 @@
 // Face and hand detection inside the zone or over the whole image; see
-// horopter/detection.hpp.
-#include "horopter/detection.hpp"
+// horopter/interaction/detection.hpp.
+#include "horopter/interaction/detection.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -8,7 +8,7 @@
 #include <cstdlib>
 
 #include "face_search.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 
@@ -54,7 +54,7 @@ Detector::Detector(DetectorOptions options) : options_(std::move(options)) {
 Detector::~Detector() = default;
 Detector::Detector(Detector&&) noexcept = default;
 
-Detections Detector::detect(const Frame& frame) {
+Detections Detector::detect(const StereoFrame& frame) {
   const DetectorOptions& o = options_;
   Impl& m = *impl_;
   if (frame.left.empty() || (frame.left.type() != CV_8UC3 && frame.left.type() != CV_8UC1))
@@ -220,26 +220,6 @@ Detections Detector::detect(const Frame& frame) {
     if (left && right) d.triangle = bodyTriangle(best->centre, left->centroid, right->centroid);
   }
   return d;
-}
-
-namespace {
-
-class DetectionStage : public Stage {
- public:
-  explicit DetectionStage(DetectorOptions options) : detector_(std::move(options)) {}
-  std::string name() const override { return "detection"; }
-  void process(Frame& frame) override {
-    frame.detections = std::make_shared<const Detections>(detector_.detect(frame));
-  }
-
- private:
-  Detector detector_;
-};
-
-}  // namespace
-
-std::unique_ptr<Stage> makeDetectionStage(DetectorOptions options) {
-  return std::make_unique<DetectionStage>(std::move(options));
 }
 
 }  // namespace horopter

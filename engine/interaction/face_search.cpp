@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <tuple>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::detail {
 
@@ -77,7 +77,7 @@ FaceSearch::FaceSearch(const DetectorOptions& o) {
 
 // A face's width is k times its disparity (k: the face's width in metres
 // over the baseline); each face found in the zone is a sample of k.
-void FaceSearch::learnWidthPerDisparity(const Frame& frame,
+void FaceSearch::learnWidthPerDisparity(const StereoFrame& frame,
                                         const std::vector<FaceDetection>& faces) {
   if (frame.disparity.empty() || frame.disparity.type() != CV_16SC1) return;
   for (const FaceDetection& f : faces) {
@@ -96,7 +96,7 @@ void FaceSearch::learnWidthPerDisparity(const Frame& frame,
 
 // The face widths the zone's disparities allow over `roi`, once k is known:
 // from the near end of the zone's depths to its far end, with a margin.
-FaceSearch::SizeRange FaceSearch::sizesFromDepth(const DetectorOptions& o, const Frame& frame,
+FaceSearch::SizeRange FaceSearch::sizesFromDepth(const DetectorOptions& o, const StereoFrame& frame,
                                                  const cv::Rect& roi) {
   if (widthPerDisparity_.size() < kMinWidthSamples || frame.disparity.empty() ||
       frame.disparity.type() != CV_16SC1 || frame.disparity.size() != frame.mask.size())
@@ -123,7 +123,7 @@ FaceSearch::SizeRange FaceSearch::sizesFromDepth(const DetectorOptions& o, const
           static_cast<int>(std::ceil(k * near * o.depthFaceMargin))};
 }
 
-FaceSearchResult FaceSearch::find(const DetectorOptions& o, const Frame& frame,
+FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& frame,
                                   const cv::Mat& colour, const cv::Rect& roi,
                                   const cv::Mat& zoneSkin) {
   const bool region = o.scope == DetectionScope::HoropterRegion;

@@ -1,7 +1,7 @@
 // The face half of the detection stage: OpenCV's Haar cascade over the zone
 // (or the whole image), sized by depth, following the last frame's faces
 // between full searches and guided by the zone's skin. Internal to
-// engine/interaction; see horopter/detection.hpp for the options.
+// engine/interaction; see horopter/interaction/detection.hpp for the options.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "horopter/detection.hpp"
+#include "horopter/interaction/detection.hpp"
 
 namespace horopter::detail {
 
@@ -32,8 +32,8 @@ class FaceSearch {
   // detectors cover; `zoneSkin` (roi-sized) is the skin there, inside the
   // zone in the region, and guides the full searches.
   // `options`: those it was made with (the Detector owns them and may move).
-  FaceSearchResult find(const DetectorOptions& options, const Frame& frame, const cv::Mat& colour,
-                        const cv::Rect& roi, const cv::Mat& zoneSkin);
+  FaceSearchResult find(const DetectorOptions& options, const StereoFrame& frame,
+                        const cv::Mat& colour, const cv::Rect& roi, const cv::Mat& zoneSkin);
 
  private:
   // Face widths the zone's depths allow, pixels.
@@ -46,8 +46,8 @@ class FaceSearch {
     int missed = 0;  // frames since
   };
 
-  void learnWidthPerDisparity(const Frame& frame, const std::vector<FaceDetection>& faces);
-  SizeRange sizesFromDepth(const DetectorOptions& o, const Frame& frame, const cv::Rect& roi);
+  void learnWidthPerDisparity(const StereoFrame& frame, const std::vector<FaceDetection>& faces);
+  SizeRange sizesFromDepth(const DetectorOptions& o, const StereoFrame& frame, const cv::Rect& roi);
 
   cv::CascadeClassifier cascade_;
   cv::Mat grey_, labels_, stats_, centroids_;

@@ -1,9 +1,9 @@
-// The godfather election's state machine; see horopter/godfather.hpp.
-#include "horopter/godfather.hpp"
+// The godfather election's state machine; see horopter/interaction/godfather.hpp.
+#include "horopter/interaction/godfather.hpp"
 
 #include <cmath>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

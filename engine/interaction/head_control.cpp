@@ -1,12 +1,12 @@
 // Pan/tilt formulas, the limited command and the head-control stage; see
-// horopter/head_control.hpp.
-#include "horopter/head_control.hpp"
+// horopter/interaction/head_control.hpp.
+#include "horopter/interaction/head_control.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "horopter/error.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/tracking.hpp"
 
 namespace horopter {
 
@@ -76,93 +76,56 @@ hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& ta
   return c;
 }
 
-// ---- the synthetic rig ------------------------------------------------------
+void validate(const HeadControlOptions& o) {
+  if (!(o.gain > 0 && o.gain <= 1)) throw Error("head control gain must be in (0, 1]");
+  if (!(o.maxRateRadPerS > 0) || !(o.framesPerSecond > 0) || o.deadbandRad < 0)
+    throw Error("head control rate and frame rate must be positive, the dead band >= 0");
+  if (o.actuationDelayFrames < 1) throw Error("the actuation delay must be >= 1 frame");
+  if (!(o.maxHandShiftFraction >= 0 && o.maxHandShiftFraction <= 0.5))
+    throw Error("head control's hand shift must be a fraction of the width in [0, 0.5]");
+  if (o.formula == PanTiltFormula::Paper && !(o.lambda > 0))
+    throw Error("the paper's head formula needs lambda > 0");
+}
 
-namespace {
+bool wantsHeadCommand(const TrackingState& s) {
+  return s.election == ElectionState::Godfather && s.head.observed;
+}
 
-class HeadControlStage : public Stage {
- public:
-  HeadControlStage(HeadControlOptions o, CapturePose pose, HeadCommandSink sink)
-      : o_(o), pose_(std::move(pose)), sink_(std::move(sink)) {
-    if (!(o.gain > 0 && o.gain <= 1)) throw Error("head control gain must be in (0, 1]");
-    if (!(o.maxRateRadPerS > 0) || !(o.framesPerSecond > 0) || o.deadbandRad < 0)
-      throw Error("head control rate and frame rate must be positive, the dead band >= 0");
-    if (o.actuationDelayFrames < 1) throw Error("the actuation delay must be >= 1 frame");
-    if (!(o.maxHandShiftFraction >= 0 && o.maxHandShiftFraction <= 0.5))
-      throw Error("head control's hand shift must be a fraction of the width in [0, 0.5]");
-    if (o.formula == PanTiltFormula::Paper && !(o.lambda > 0))
-      throw Error("the paper's head formula needs lambda > 0");
+std::optional<hw::HeadAngles> headCommand(const TrackingState& s, const hw::HeadAngles& pose,
+                                          const HeadControlOptions& o) {
+  if (!wantsHeadCommand(s)) return std::nullopt;
+  hw::HeadAngles target = pose;
+  const bool have3d = std::isfinite(s.head.rig.z) && s.head.rig.z > 0;
+  if (o.formula == PanTiltFormula::Atan2 && have3d) {
+    target = anglesToCentre(s.head.rig, pose);
+  } else if (o.focalPx > 0) {
+    // The paper's formula (or, without depth, the pinhole angle: phi = 1).
+    const bool paper = o.formula == PanTiltFormula::Paper && have3d;
+    const double d = paper ? s.head.rig.z : 1.0, lambda = paper ? o.lambda : 1.0;
+    target.pan += paperAngle(s.head.image.x - o.cx, o.focalPx, d, lambda);
+    target.tilt += paperAngle(s.head.image.y - o.cy, o.focalPx, d, lambda);
+  } else {
+    return std::nullopt;
   }
-  std::string name() const override { return "head control"; }
-  void process(Frame& frame) override {
-    std::optional<hw::HeadAngles> command;
-    try {
-      command = compute(frame);
-    } catch (...) {
-      sink_(frame.index, std::nullopt);  // capture must not wait for this frame
-      throw;
-    }
-    sink_(frame.index, command);
-    if (command && frame.tracking) {
-      auto state = std::make_shared<TrackingState>(*frame.tracking);
-      state->headCommand = command;
-      state->headCommandFrame = frame.index + o_.actuationDelayFrames;
-      frame.tracking = state;
-    }
+  // Frame the hands too: the middle of the head's and hands' extent where
+  // the face would be.
+  if (o.frameHands && o.focalPx > 0 && o.imageWidth > 0) {
+    float lo = s.head.image.x, hi = lo;
+    for (const PartState* hand : {&s.leftHand, &s.rightHand})
+      if (hand->tracked) {
+        lo = std::min(lo, hand->image.x);
+        hi = std::max(hi, hand->image.x);
+      }
+    const double most = o.maxHandShiftFraction * o.imageWidth;
+    const double shift = std::clamp(0.5 * (lo + hi) - s.head.image.x, -most, most);
+    target.pan += std::atan(shift / o.focalPx);
   }
-
- private:
-  std::optional<hw::HeadAngles> compute(const Frame& frame) const {
-    if (!frame.tracking)
-      throw Error("head control needs Frame::tracking: run the tracking stage first");
-    const TrackingState& s = *frame.tracking;
-    if (s.election != ElectionState::Godfather || !s.head.observed) return std::nullopt;
-    const std::optional<hw::HeadAngles> pose = pose_(frame);
-    if (!pose) return std::nullopt;
-    hw::HeadAngles target = *pose;
-    const bool have3d = std::isfinite(s.head.rig.z) && s.head.rig.z > 0;
-    if (o_.formula == PanTiltFormula::Atan2 && have3d) {
-      target = anglesToCentre(s.head.rig, *pose);
-    } else if (o_.focalPx > 0) {
-      // The paper's formula (or, without depth, the pinhole angle: phi = 1).
-      const bool paper = o_.formula == PanTiltFormula::Paper && have3d;
-      const double d = paper ? s.head.rig.z : 1.0, lambda = paper ? o_.lambda : 1.0;
-      target.pan += paperAngle(s.head.image.x - o_.cx, o_.focalPx, d, lambda);
-      target.tilt += paperAngle(s.head.image.y - o_.cy, o_.focalPx, d, lambda);
-    } else {
-      return std::nullopt;
-    }
-    // Frame the hands too: the middle of the head's and hands' extent where
-    // the face would be.
-    if (o_.frameHands && o_.focalPx > 0 && o_.imageWidth > 0) {
-      float lo = s.head.image.x, hi = lo;
-      for (const PartState* hand : {&s.leftHand, &s.rightHand})
-        if (hand->tracked) {
-          lo = std::min(lo, hand->image.x);
-          hi = std::max(hi, hand->image.x);
-        }
-      const double most = o_.maxHandShiftFraction * o_.imageWidth;
-      const double shift = std::clamp(0.5 * (lo + hi) - s.head.image.x, -most, most);
-      target.pan += std::atan(shift / o_.focalPx);
-    }
-    // Hold the face above the centre: look down by the angle of that offset.
-    if (o_.imageHeight > 0 && o_.focalPx > 0)
-      target.tilt += std::atan((0.5 - o_.faceRowFraction) * o_.imageHeight / o_.focalPx);
-    const hw::HeadAngles c = limitCommand(*pose, target, o_);
-    if (c.pan == pose->pan && c.tilt == pose->tilt) return std::nullopt;  // inside the dead band
-    return c;
-  }
-
-  HeadControlOptions o_;
-  CapturePose pose_;
-  HeadCommandSink sink_;
-};
-
-}  // namespace
-
-std::unique_ptr<Stage> makeHeadControlStage(HeadControlOptions options, CapturePose pose,
-                                            HeadCommandSink sink) {
-  return std::make_unique<HeadControlStage>(options, std::move(pose), std::move(sink));
+  // Hold the face above the centre: look down by the angle of that offset.
+  if (o.imageHeight > 0 && o.focalPx > 0)
+    target.tilt += std::atan((0.5 - o.faceRowFraction) * o.imageHeight / o.focalPx);
+  const hw::HeadAngles c = limitCommand(pose, target, o);
+  if (c.pan == pose.pan && c.tilt == pose.tilt) return std::nullopt;  // inside the dead band
+  return c;
 }
 
 }  // namespace horopter

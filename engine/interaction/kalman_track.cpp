@@ -1,9 +1,9 @@
-// The constant-velocity Kalman filter; see horopter/kalman_track.hpp.
-#include "horopter/kalman_track.hpp"
+// The constant-velocity Kalman filter; see horopter/interaction/kalman_track.hpp.
+#include "horopter/interaction/kalman_track.hpp"
 
 #include <Eigen/Dense>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

@@ -1,9 +1,9 @@
-// The chroma lookup table of the skin model; see horopter/skin_model.hpp.
-#include "horopter/skin_model.hpp"
+// The chroma lookup table of the skin model; see horopter/interaction/skin_model.hpp.
+#include "horopter/interaction/skin_model.hpp"
 
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

@@ -44,7 +44,7 @@ void takeCandidate(HandTrack& hand, HandFrame& f, int k, std::size_t j, bool res
   f.taken[j] = true;
 }
 
-double frameTimeS(const Frame& frame, const TrackerOptions& o, FrameClock& clock) {
+double frameTimeS(const StereoFrame& frame, const TrackerOptions& o, FrameClock& clock) {
   if (!o.captureTime) return static_cast<double>(frame.index) / o.framesPerSecond;
   if (!clock.haveStart) {
     clock.start = frame.captured;
@@ -300,7 +300,7 @@ void startNewHands(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerO
 }
 
 PartState partOf(const std::optional<ConstantVelocityTrack>& track, double timeS,
-                 const Frame& frame, const RectifiedGeometry& rig, int windowPx) {
+                 const StereoFrame& frame, const RectifiedGeometry& rig, int windowPx) {
   PartState p;
   if (!track) return p;
   p.tracked = true;
@@ -313,8 +313,9 @@ PartState partOf(const std::optional<ConstantVelocityTrack>& track, double timeS
   return p;
 }
 
-TrackingState reportState(const Frame& frame, double t, ElectionState state, double candidateS,
-                          const SubjectTracks& s, const RectifiedGeometry& rig, BodySample& body) {
+TrackingState reportState(const StereoFrame& frame, double t, ElectionState state,
+                          double candidateS, const SubjectTracks& s, const RectifiedGeometry& rig,
+                          BodySample& body) {
   TrackingState out;
   out.timeS = t;
   out.election = state;

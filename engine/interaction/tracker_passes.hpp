@@ -1,7 +1,7 @@
 // The passes BodyTracker::update runs each frame, as free functions on plain
 // data (the subject's tracks, this frame's hand candidates and which of them
 // are taken) so each can be tested alone. Internal to engine/interaction; see
-// horopter/tracking.hpp for the options they read.
+// horopter/interaction/tracking.hpp for the options they read.
 #pragma once
 
 #include <array>
@@ -10,11 +10,11 @@
 #include <optional>
 #include <vector>
 
-#include "horopter/detection.hpp"
-#include "horopter/godfather.hpp"
-#include "horopter/kalman_track.hpp"
-#include "horopter/pipeline.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/interaction/detection.hpp"
+#include "horopter/interaction/godfather.hpp"
+#include "horopter/interaction/kalman_track.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/vision/stereo_frame.hpp"
 
 namespace horopter::detail {
 
@@ -95,7 +95,7 @@ void takeCandidate(HandTrack& hand, HandFrame& f, int k, std::size_t j, bool res
 
 // The frame's time: index / framesPerSecond, or with captureTime the
 // capture timestamp since the first frame's.
-double frameTimeS(const Frame& frame, const TrackerOptions& o, FrameClock& clock);
+double frameTimeS(const StereoFrame& frame, const TrackerOptions& o, FrameClock& clock);
 
 // Every track is predicted to time t.
 void predictTracks(SubjectTracks& s, double t);
@@ -173,10 +173,11 @@ void startNewHands(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerO
 // One part's state from its track (observed: updated at timeS), with its
 // rig point from the disparity within `windowPx` around it.
 PartState partOf(const std::optional<ConstantVelocityTrack>& track, double timeS,
-                 const Frame& frame, const RectifiedGeometry& rig, int windowPx);
+                 const StereoFrame& frame, const RectifiedGeometry& rig, int windowPx);
 
 // The frame's state and body sample from the tracks.
-TrackingState reportState(const Frame& frame, double t, ElectionState state, double candidateS,
-                          const SubjectTracks& s, const RectifiedGeometry& rig, BodySample& body);
+TrackingState reportState(const StereoFrame& frame, double t, ElectionState state,
+                          double candidateS, const SubjectTracks& s, const RectifiedGeometry& rig,
+                          BodySample& body);
 
 }  // namespace horopter::detail

@@ -1,6 +1,6 @@
 // The godfather's election and Kalman tracks of head and hands; see
-// horopter/tracking.hpp.
-#include "horopter/tracking.hpp"
+// horopter/interaction/tracking.hpp.
+#include "horopter/interaction/tracking.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "blind_follow.hpp"
-#include "horopter/error.hpp"
-#include "horopter/head_control.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/head_control.hpp"
 #include "tracker_passes.hpp"
 
 namespace horopter {
@@ -93,7 +93,7 @@ BodyTracker::BodyTracker(TrackerOptions options) : options_(options) {
 BodyTracker::~BodyTracker() = default;
 BodyTracker::BodyTracker(BodyTracker&&) noexcept = default;
 
-void BodyTracker::followHeadTurn(const Frame& frame) {
+void BodyTracker::followHeadTurn(const StereoFrame& frame) {
   Impl& m = *impl_;
   if (!options_.capturePose) return;
   const std::optional<hw::HeadAngles> pose = options_.capturePose(frame);
@@ -113,7 +113,8 @@ void BodyTracker::followHeadTurn(const Frame& frame) {
     hand.lastSeen = moved(hand.lastSeen);
 }
 
-bool BodyTracker::followBlind(int k, const Frame& frame, cv::Point2f head, double fw, double t) {
+bool BodyTracker::followBlind(int k, const StereoFrame& frame, cv::Point2f head, double fw,
+                              double t) {
   Impl& m = *impl_;
   const TrackerOptions& o = options_;
   if (o.blindFollowS <= 0 || m.looks[k].empty() || t - m.lastDetectedS[k] > o.blindFollowS)
@@ -139,8 +140,8 @@ bool BodyTracker::followBlind(int k, const Frame& frame, cv::Point2f head, doubl
   return true;
 }
 
-void BodyTracker::rememberLook(int k, const HandDetection* detected, const Frame& frame, double fw,
-                               double t) {
+void BodyTracker::rememberLook(int k, const HandDetection* detected, const StereoFrame& frame,
+                               double fw, double t) {
   Impl& m = *impl_;
   const TrackerOptions& o = options_;
   if (!m.subject.hands[static_cast<std::size_t>(k)].track) {
@@ -162,10 +163,8 @@ void BodyTracker::rememberLook(int k, const HandDetection* detected, const Frame
   m.handDisparity[k] = std::isfinite(p.z) && p.z > 0 ? o.rig.focalPx * o.rig.baseline / p.z : 0;
 }
 
-TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
-  if (!frame.detections)
-    throw Error("tracking needs Frame::detections: run the detection stage first");
-  const Detections& det = *frame.detections;
+TrackingState BodyTracker::update(const StereoFrame& frame, const Detections& det,
+                                  BodySample& body) {
   Impl& m = *impl_;
   const TrackerOptions& o = options_;
   detail::SubjectTracks& s = m.subject;
@@ -199,26 +198,6 @@ TrackingState BodyTracker::update(const Frame& frame, BodySample& body) {
       detail::reportState(frame, t, state, m.election.candidateS(t), s, o.rig, body);
   if (std::isfinite(out.head.rig.z) && out.head.rig.z > 0) m.headDepthM = out.head.rig.z;
   return out;
-}
-
-namespace {
-
-class TrackingStage : public Stage {
- public:
-  explicit TrackingStage(TrackerOptions options) : tracker_(options) {}
-  std::string name() const override { return "tracking"; }
-  void process(Frame& frame) override {
-    frame.tracking = std::make_shared<const TrackingState>(tracker_.update(frame, frame.body));
-  }
-
- private:
-  BodyTracker tracker_;
-};
-
-}  // namespace
-
-std::unique_ptr<Stage> makeTrackingStage(TrackerOptions options) {
-  return std::make_unique<TrackingStage>(options);
 }
 
 }  // namespace horopter

@@ -4,8 +4,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 

@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "horopter/frontend.hpp"
+#include "horopter/vision/frontend.hpp"
 
 namespace horopter {
 

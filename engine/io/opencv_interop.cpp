@@ -1,7 +1,7 @@
 #include <string>
 
-#include "horopter/error.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 

@@ -1,10 +1,10 @@
-// Table II as velocity profiles; see include/horopter/behaviour.hpp.
-#include "horopter/behaviour.hpp"
+// Table II as velocity profiles; see include/horopter/movement/behaviour.hpp.
+#include "horopter/movement/behaviour.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

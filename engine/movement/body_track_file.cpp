@@ -1,5 +1,5 @@
-// Recorded tracks as CSV; see include/horopter/body_track_file.hpp.
-#include "horopter/body_track_file.hpp"
+// Recorded tracks as CSV; see include/horopter/movement/body_track_file.hpp.
+#include "horopter/movement/body_track_file.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

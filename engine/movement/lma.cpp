@@ -1,5 +1,5 @@
-// Laban Movement Analysis features; see include/horopter/lma.hpp.
-#include "horopter/lma.hpp"
+// Laban Movement Analysis features; see include/horopter/movement/lma.hpp.
+#include "horopter/movement/lma.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
 // The movement model's tables and the forward filter; see
-// include/horopter/movement_classifier.hpp for the model's structure.
-#include "horopter/movement_classifier.hpp"
+// include/horopter/movement/movement_classifier.hpp for the model's structure.
+#include "horopter/movement/movement_classifier.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

@@ -1,5 +1,5 @@
 // The movement model's versioned text file; the format is described in
-// include/horopter/movement_classifier.hpp.
+// include/horopter/movement/movement_classifier.hpp.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "horopter/error.hpp"
-#include "horopter/movement_classifier.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/movement/movement_classifier.hpp"
 
 namespace horopter {
 
@@ -86,7 +86,8 @@ class Reader {
 std::string MovementModel::serialize() const {
   std::ostringstream out;
   out << kMagic << ' ' << kFormatVersion << '\n';
-  out << "# LMA symbol counts per movement; see include/horopter/movement_classifier.hpp\n";
+  out << "# LMA symbol counts per movement; see "
+         "include/horopter/movement/movement_classifier.hpp\n";
   out << "params " << formatDouble(params_.stay) << ' ' << formatDouble(params_.evidenceWeight)
       << ' ' << formatDouble(params_.decisionThreshold) << ' '
       << formatDouble(params_.rearmThreshold) << ' ' << formatDouble(params_.alpha) << '\n';

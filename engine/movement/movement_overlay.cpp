@@ -1,11 +1,11 @@
 // The movement overlay for horopter run's annotated output; see
-// include/horopter/movement.hpp.
+// include/horopter/movement/movement.hpp.
 #include <opencv2/imgproc.hpp>
 
 #include <cstdio>
 #include <string>
 
-#include "horopter/movement.hpp"
+#include "horopter/movement/movement.hpp"
 
 namespace horopter {
 

@@ -7,13 +7,13 @@
 #include <memory>
 #include <mutex>
 
-#include "horopter/pipeline.hpp"
+#include "horopter/pipeline/scheduler.hpp"
 
 namespace horopter::pipeline_detail {
 
 class FrameQueue {
  public:
-  void push(std::unique_ptr<Frame> frame) {
+  void push(std::unique_ptr<ScheduledFrame> frame) {
     {
       std::lock_guard lock(mutex_);
       frames_.push_back(std::move(frame));
@@ -22,7 +22,7 @@ class FrameQueue {
   }
 
   // The next frame, or nullptr once the queue is closed and empty.
-  std::unique_ptr<Frame> pop() {
+  std::unique_ptr<ScheduledFrame> pop() {
     std::unique_lock lock(mutex_);
     ready_.wait(lock, [&] { return closed_ || !frames_.empty(); });
     if (frames_.empty()) return nullptr;
@@ -43,7 +43,7 @@ class FrameQueue {
  private:
   std::mutex mutex_;
   std::condition_variable ready_;
-  std::deque<std::unique_ptr<Frame>> frames_;
+  std::deque<std::unique_ptr<ScheduledFrame>> frames_;
   bool closed_ = false;
 };
 

@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/pipeline.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/pipeline/scheduler.hpp"
 
 namespace horopter {
 

@@ -1,8 +1,8 @@
-#include "horopter/thread_pool.hpp"
+#include "schedule/thread_pool.hpp"
 
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

@@ -2,9 +2,9 @@
 #include "horopter/sim/closed_loop.hpp"
 
 #include <algorithm>
-#include <any>
 
-#include "horopter/error.hpp"
+#include "horopter/app/interaction_stages.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::sim {
 
@@ -89,13 +89,14 @@ bool ClosedLoopSyntheticSource::next(Frame& frame) {
   synth::SyntheticFrame rendered = scene_.render(next_++);
   frame.left = std::move(rendered.left);
   frame.right = std::move(rendered.right);
-  frame.truth = std::move(rendered.truth);
+  // A plain Frame (not from newFrame()) gets the images only.
+  if (auto* sim = dynamic_cast<SimFrame*>(&frame)) sim->truth = std::move(rendered.truth);
   return true;
 }
 
 CapturePose syntheticCapturePose() {
-  return [](const Frame& f) -> std::optional<hw::HeadAngles> {
-    const auto* t = std::any_cast<synth::FrameTruth>(&f.truth);
+  return [](const StereoFrame& f) -> std::optional<hw::HeadAngles> {
+    const synth::FrameTruth* t = truthOf(f);
     if (!t) return std::nullopt;
     return hw::HeadAngles{t->head.pan, t->head.tilt, t->head.vergence};
   };

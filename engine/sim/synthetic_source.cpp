@@ -2,11 +2,10 @@
 #include "horopter/sim/synthetic_source.hpp"
 
 #include <algorithm>
-#include <any>
 
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/sim/closed_loop.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter::sim {
 
@@ -21,7 +20,8 @@ bool SyntheticSource::next(Frame& frame) {
   synth::SyntheticFrame rendered = scene_.render(next_++);
   frame.left = std::move(rendered.left);
   frame.right = std::move(rendered.right);
-  frame.truth = std::move(rendered.truth);
+  // A plain Frame (not from newFrame()) gets the images only.
+  if (auto* sim = dynamic_cast<SimFrame*>(&frame)) sim->truth = std::move(rendered.truth);
   return true;
 }
 
@@ -32,7 +32,7 @@ ThresholdFunction syntheticZoneThresholds(const synth::SyntheticScene& scene) {
   g.cy = scene.cy();
   g.baseline = scene.baselineM();
   return [g](const Frame& f, std::vector<std::int16_t>& out) {
-    const auto* truth = std::any_cast<synth::FrameTruth>(&f.truth);
+    const synth::FrameTruth* truth = truthOf(f);
     if (!truth) throw Error("a synthetic frame without its truth");
     if (!(truth->head.vergence > 1e-9)) {
       std::fill(out.begin(), out.end(), std::int16_t{1});  // fixation at infinity: all in front

@@ -4,10 +4,10 @@
 //
 //   embed [--left L --right R] [--frames N] [--backend NAME]
 // (default pair: OpenCV's aloe, from Debian's opencv-doc)
-#include <horopter/frontend.hpp>
-#include <horopter/geometry.hpp>
-#include <horopter/opencv.hpp>
-#include <horopter/pipeline_builder.hpp>
+#include <horopter/app/pipeline_builder.hpp>
+#include <horopter/vision/frontend.hpp>
+#include <horopter/vision/geometry.hpp>
+#include <horopter/vision/opencv.hpp>
 
 #include <cstdio>
 #include <cstring>

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::hw {
 

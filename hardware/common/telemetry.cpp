@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::hw {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::hw::ptu {
 

@@ -10,7 +10,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::hw {
 

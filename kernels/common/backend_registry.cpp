@@ -1,12 +1,14 @@
 // The table of backends. A new backend adds one entry here, and the
 // conformance test and the benches pick it up from this list.
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 #include "common/cpu_backend.hpp"
 #include "common/cpu_features.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/error.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/backend.hpp"
 #include "horopter_mask/horopter_mask.hpp"
 #include "median/median.hpp"
 #include "occlusion/occlusion.hpp"
@@ -23,12 +25,14 @@ Backend makeScalar() {
   b.name = "scalar";
   b.description = "portable C++ reference (the specification)";
   b.available = true;
-  b.kernels.prefilterXSobel = scalar::prefilterXSobel;
-  b.kernels.matchBlocks = scalar::matchBlocks;
-  b.kernels.leftRightCheck = scalar::leftRightCheck;
-  b.kernels.filterSpeckles = scalar::filterSpeckles;
-  b.kernels.medianFilter = scalar::medianFilter;
-  b.kernels.horopterMask = scalar::horopterMask;
+  KernelTable t;
+  t.prefilterXSobel = scalar::prefilterXSobel;
+  t.matchBlocks = scalar::matchBlocks;
+  t.leftRightCheck = scalar::leftRightCheck;
+  t.filterSpeckles = scalar::filterSpeckles;
+  t.medianFilter = scalar::medianFilter;
+  t.horopterMask = scalar::horopterMask;
+  b.kernels = std::make_shared<const KernelTable>(t);
   return b;
 }
 
@@ -39,12 +43,14 @@ Backend makeAvx2() {
   b.description = "hand-written AVX2 kernels (x86-64 CPUs with AVX2)";
   b.available = cpuRunsAvx2Backend();
   if (!b.available) b.unavailableReason = "this CPU or its OS lacks one of " HOROPTER_AVX2_FEATURES;
-  b.kernels.prefilterXSobel = avx2::prefilterXSobel;
-  b.kernels.matchBlocks = avx2::matchBlocks;
-  b.kernels.leftRightCheck = avx2::leftRightCheck;
-  b.kernels.filterSpeckles = avx2::filterSpeckles;
-  b.kernels.medianFilter = avx2::medianFilter;
-  b.kernels.horopterMask = avx2::horopterMask;
+  KernelTable t;
+  t.prefilterXSobel = avx2::prefilterXSobel;
+  t.matchBlocks = avx2::matchBlocks;
+  t.leftRightCheck = avx2::leftRightCheck;
+  t.filterSpeckles = avx2::filterSpeckles;
+  t.medianFilter = avx2::medianFilter;
+  t.horopterMask = avx2::horopterMask;
+  b.kernels = std::make_shared<const KernelTable>(t);
   return b;
 }
 

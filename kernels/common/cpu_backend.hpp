@@ -2,7 +2,7 @@
 // OpenCL path's speckle filter, and the OpenCL front end's fallback).
 #pragma once
 
-#include "horopter/backend.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter {
 

@@ -4,7 +4,7 @@
 #include <thread>
 
 #include "common/cpu_features.hpp"
-#include "horopter/devices.hpp"
+#include "horopter/kernels/devices.hpp"
 
 namespace horopter {
 

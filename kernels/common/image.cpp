@@ -1,4 +1,4 @@
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
 
 #include <cstdlib>
 #include <cstring>

@@ -4,8 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "horopter/error.hpp"
-#include "horopter/kernels.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "sad/sad.hpp"
 
 namespace horopter {
@@ -36,6 +37,13 @@ RowRange resolveRows(RowRange rows, int height) {
   return rows;
 }
 
+// A backend without a table (one that is not available) has no kernel:
+// requireKernel then names the kernel asked for.
+const KernelTable& tableOf(const Backend& backend) {
+  static const KernelTable none{};
+  return backend.kernels ? *backend.kernels : none;
+}
+
 void requireKernel(const void* fn, const Backend& backend, const char* kernel) {
   if (fn == nullptr) throw Error("backend '" + backend.name + "' has no " + kernel + " kernel");
 }
@@ -59,9 +67,9 @@ void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filter
   }
   if (overlaps(src, filtered) || overlaps(src, texture) || overlaps(filtered, texture))
     throw Error("prefilterXSobel: input and outputs must not overlap");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.prefilterXSobel), backend,
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).prefilterXSobel), backend,
                 "prefilter");
-  backend.kernels.prefilterXSobel(src, cap, filtered, texture, resolveRows(rows, src.height));
+  tableOf(backend).prefilterXSobel(src, cap, filtered, texture, resolveRows(rows, src.height));
 }
 
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
@@ -102,9 +110,9 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   }
   if (overlaps(disparity, winnerRight))
     throw Error("matchBlocks: the disparity and right-winner outputs must not overlap");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.matchBlocks), backend, "matching");
-  backend.kernels.matchBlocks(left, right, texture, params, disparity, winnerRight,
-                              resolveRows(rows, left.height));
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).matchBlocks), backend, "matching");
+  tableOf(backend).matchBlocks(left, right, texture, params, disparity, winnerRight,
+                               resolveRows(rows, left.height));
 }
 
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
@@ -115,18 +123,18 @@ void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRigh
   checkSameSize(disparity, "disparity", winnerRight, "right-winner map");
   if (overlaps(disparity, winnerRight))
     throw Error("leftRightCheck: the disparity and the right-winner map must not overlap");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.leftRightCheck), backend,
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).leftRightCheck), backend,
                 "left-right check");
-  backend.kernels.leftRightCheck(disparity, winnerRight, params,
-                                 resolveRows(rows, disparity.height));
+  tableOf(backend).leftRightCheck(disparity, winnerRight, params,
+                                  resolveRows(rows, disparity.height));
 }
 
 void filterSpeckles(const ImageView& disparity, const StereoParams& params,
                     const Backend& backend) {
   validate(params);
   checkView(disparity, PixelType::S16C1, "disparity");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.filterSpeckles), backend, "speckle");
-  backend.kernels.filterSpeckles(disparity, params);
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).filterSpeckles), backend, "speckle");
+  tableOf(backend).filterSpeckles(disparity, params);
 }
 
 void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianParams& median,
@@ -139,9 +147,9 @@ void medianFilter(const ConstImageView& src, const ImageView& dst, const MedianP
   checkSameSize(src, "median input", dst, "median output");
   if (overlaps(src, dst))
     throw Error("medianFilter: input and output must not overlap (it cannot run in place)");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.medianFilter), backend, "median");
-  backend.kernels.medianFilter(src, dst, median.kernelSize, effectiveMinValid(median), invalid,
-                               resolveRows(rows, src.height));
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).medianFilter), backend, "median");
+  tableOf(backend).medianFilter(src, dst, median.kernelSize, effectiveMinValid(median), invalid,
+                                resolveRows(rows, src.height));
 }
 
 void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,
@@ -165,10 +173,10 @@ void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t>
   }
   if (overlaps(disparity, mask))
     throw Error("horopterMask: the mask must not overlap the disparity");
-  requireKernel(reinterpret_cast<const void*>(backend.kernels.horopterMask), backend,
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).horopterMask), backend,
                 "horopter mask");
-  backend.kernels.horopterMask(disparity, thresholds, invalid, mask, image, segmented,
-                               resolveRows(rows, disparity.height));
+  tableOf(backend).horopterMask(disparity, thresholds, invalid, mask, image, segmented,
+                                resolveRows(rows, disparity.height));
 }
 
 }  // namespace horopter

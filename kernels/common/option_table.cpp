@@ -1,5 +1,5 @@
-// Strict number parsing and the range message; see horopter/option_table.hpp.
-#include "horopter/option_table.hpp"
+// Strict number parsing and the range message; see horopter/core/option_table.hpp.
+#include "horopter/core/option_table.hpp"
 
 #include <cctype>
 #include <cerrno>

@@ -1,9 +1,9 @@
-#include "horopter/stereo_params.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 #include <limits>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 

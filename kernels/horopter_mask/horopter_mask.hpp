@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <span>
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter::scalar {
 void horopterMask(const ConstImageView& disparity, std::span<const std::int16_t> thresholds,

@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter::scalar {
 void medianFilter(const ConstImageView& src, const ImageView& dst, int kernelSize, int minValid,

@@ -1,9 +1,9 @@
 // Per-backend entry points of occlusion cleanup (arguments pre-validated).
 #pragma once
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::scalar {
 void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,

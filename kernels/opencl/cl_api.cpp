@@ -2,7 +2,7 @@
 
 #include <CL/cl_ext.h>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::opencl {
 

@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "common/cpu_backend.hpp"
+#include "common/kernel_table.hpp"
 
 namespace horopter::opencl {
 
@@ -12,7 +13,7 @@ std::atomic<const Backend*> g_last{nullptr};
 
 const Backend& filterSpecklesOnCpu(const ImageView& disparity, const StereoParams& params) {
   const Backend& cpu = cpuBackend();
-  cpu.kernels.filterSpeckles(disparity, params);
+  cpu.kernels->filterSpeckles(disparity, params);
   g_last = &cpu;
   return cpu;
 }

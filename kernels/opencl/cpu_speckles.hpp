@@ -3,7 +3,7 @@
 // kernel table and the per-frame pipeline call it.
 #pragma once
 
-#include "horopter/backend.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter::opencl {
 

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/program_cache.hpp"
 
 namespace horopter::opencl {

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 #include "opencl/cl_api.hpp"
 #include "opencl/device.hpp"
 

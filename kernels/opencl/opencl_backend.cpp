@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
-#include "horopter/error.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/device.hpp"
 #include "opencl/sync_kernels.hpp"
 
@@ -62,7 +63,7 @@ std::vector<Backend> makeBackends() {
                     d.platformName + "); speckle filter on the CPU";
     b.available = index < kMaxBackendDevices;
     if (!b.available) b.unavailableReason = "only the first 8 OpenCL devices get a backend";
-    if (b.available) b.kernels = syncKernelTable(index);
+    if (b.available) b.kernels = std::make_shared<const KernelTable>(syncKernelTable(index));
     out.push_back(b);
   }
   return out;

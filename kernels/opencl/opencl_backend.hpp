@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/backend.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter::opencl {
 

@@ -2,7 +2,7 @@
 // unavailable, with the reason.
 #include "opencl/opencl_backend.hpp"
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/pipeline.hpp"
 
 namespace horopter::opencl {

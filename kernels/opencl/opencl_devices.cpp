@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/devices.hpp"
+#include "horopter/kernels/devices.hpp"
 
 #ifdef HOROPTER_HAVE_OPENCL
 #include "opencl/cl_api.hpp"

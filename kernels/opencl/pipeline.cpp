@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/cpu_speckles.hpp"
 #include "opencl/device.hpp"
 #include "opencl/launch.hpp"

@@ -1,5 +1,5 @@
 // The per-frame chain on one OpenCL device, for the asynchronous front end
-// (include/horopter/opencl_frontend.hpp): one in-order queue, its own
+// (include/horopter/vision/opencl_frontend.hpp): one in-order queue, its own
 // cl_kernel objects, and per slot (a frame in flight) the device buffers,
 // reused from frame to frame. Every OpenCL failure is a horopter::Error.
 #pragma once
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "horopter/image.hpp"
-#include "horopter/opencl_frontend.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/stereo_params.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
 
 namespace horopter::opencl {
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/cl_sources.hpp"
 
 namespace horopter::opencl {

@@ -5,7 +5,7 @@
 #include <memory>
 #include <mutex>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "opencl/cpu_speckles.hpp"
 #include "opencl/device.hpp"
 #include "opencl/launch.hpp"

@@ -5,7 +5,7 @@
 // CPU (opencl/cpu_speckles.hpp), as it joins pixels across the whole frame.
 #pragma once
 
-#include "horopter/backend.hpp"
+#include "common/kernel_table.hpp"
 
 namespace horopter::opencl {
 

@@ -1,8 +1,8 @@
 // Per-backend entry points of the x-Sobel prefilter (arguments pre-validated).
 #pragma once
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
 
 namespace horopter::scalar {
 void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,

@@ -2,9 +2,9 @@
 // and the geometry every backend shares.
 #pragma once
 
-#include "horopter/backend.hpp"
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
 

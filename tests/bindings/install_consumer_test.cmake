@@ -22,7 +22,7 @@ file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
 
-foreach(f include/horopter/horopter.h include/horopter/frontend.hpp bin/horopter)
+foreach(f include/horopter/horopter.h include/horopter/vision/frontend.hpp bin/horopter)
   if(NOT EXISTS "${prefix}/${f}")
     message(FATAL_ERROR "the install tree has no ${f}")
   endif()

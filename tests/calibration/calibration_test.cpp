@@ -14,9 +14,9 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/calibration.hpp"
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/calibration.hpp"
+#include "horopter/vision/geometry.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -25,11 +25,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/backend.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
-#include "horopter/opencv.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "sad/sad.hpp"
 #include "test_support.hpp"
 
@@ -67,7 +68,8 @@ TEST(ConformanceSetup, ScalarReferenceIsRegisteredAndAvailable) {
   ASSERT_NE(scalar, nullptr);
   EXPECT_EQ(scalar, &scalarBackend());
   EXPECT_TRUE(scalar->available);
-  const KernelTable& k = scalar->kernels;
+  ASSERT_TRUE(scalar->kernels);
+  const KernelTable& k = *scalar->kernels;
   EXPECT_TRUE(k.prefilterXSobel && k.matchBlocks && k.leftRightCheck && k.filterSpeckles &&
               k.medianFilter && k.horopterMask);
 }
@@ -645,7 +647,7 @@ namespace wrong {
 // Matching one 1/16 px off at a single pixel.
 void matchOffByOne(const ConstImageView& l, const ConstImageView& r, const ConstImageView& t,
                    const StereoParams& p, const ImageView& d, const ImageView& wr, RowRange rows) {
-  scalarBackend().kernels.matchBlocks(l, r, t, p, d, wr, rows);
+  scalarBackend().kernels->matchBlocks(l, r, t, p, d, wr, rows);
   if (rows.begin <= d.height / 2 && d.height / 2 < rows.end)
     d.row<std::int16_t>(d.height / 2)[d.width / 2] += 1;
 }
@@ -653,7 +655,7 @@ void matchOffByOne(const ConstImageView& l, const ConstImageView& r, const Const
 // (a canary there; never outside the buffer, so AddressSanitizer stays quiet).
 void medianOverrun(const ConstImageView& s, const ImageView& d, int k, int minValid,
                    std::int16_t invalid, RowRange rows) {
-  scalarBackend().kernels.medianFilter(s, d, k, minValid, invalid, rows);
+  scalarBackend().kernels->medianFilter(s, d, k, minValid, invalid, rows);
   if (d.strideBytes >= static_cast<std::ptrdiff_t>((d.width + 1) * sizeof(std::int16_t)))
     d.row<std::int16_t>(0)[d.width] = 0x1234;
 }
@@ -665,13 +667,13 @@ void prefilterIgnoresStride(const ConstImageView& s, int cap, const ImageView& f
   ImageView filtered = f, texture = t;
   filtered.strideBytes = f.width;
   texture.strideBytes = t.width;
-  scalarBackend().kernels.prefilterXSobel(src, cap, filtered, texture, rows);
+  scalarBackend().kernels->prefilterXSobel(src, cap, filtered, texture, rows);
 }
 // Scribbles on its (const) input.
 void maskModifiesInput(const ConstImageView& d, std::span<const std::int16_t> thresholds,
                        std::int16_t invalid, const ImageView& mask, const ConstImageView& image,
                        const ImageView& segmented, RowRange rows) {
-  scalarBackend().kernels.horopterMask(d, thresholds, invalid, mask, image, segmented, rows);
+  scalarBackend().kernels->horopterMask(d, thresholds, invalid, mask, image, segmented, rows);
   const_cast<std::int16_t*>(d.row<std::int16_t>(0))[0] ^= 1;
 }
 // Never removes a speckle.
@@ -685,7 +687,7 @@ void lrTruncates(const ImageView& d, const ConstImageView& wr, const StereoParam
     for (int x = 0; x < d.width; ++x)
       if (shifted.at<std::int16_t>(x, y) != invalid) shifted.at<std::int16_t>(x, y) &= ~15;
   TestImage checked = shifted.clone();
-  scalarBackend().kernels.leftRightCheck(checked.view(), wr, p, rows);
+  scalarBackend().kernels->leftRightCheck(checked.view(), wr, p, rows);
   for (int y = rows.begin; y < rows.end; ++y)
     for (int x = 0; x < d.width; ++x)
       if (checked.at<std::int16_t>(x, y) == invalid) d.row<std::int16_t>(y)[x] = invalid;
@@ -701,7 +703,9 @@ Backend make(const char* name) {
 const Backend& offByOne() {
   static const Backend b = [] {
     Backend x = make("wrong-match");
-    x.kernels.matchBlocks = matchOffByOne;
+    KernelTable t = *x.kernels;
+    t.matchBlocks = matchOffByOne;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;
@@ -709,7 +713,9 @@ const Backend& offByOne() {
 const Backend& overrun() {
   static const Backend b = [] {
     Backend x = make("wrong-median");
-    x.kernels.medianFilter = medianOverrun;
+    KernelTable t = *x.kernels;
+    t.medianFilter = medianOverrun;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;
@@ -717,7 +723,9 @@ const Backend& overrun() {
 const Backend& strideless() {
   static const Backend b = [] {
     Backend x = make("wrong-prefilter");
-    x.kernels.prefilterXSobel = prefilterIgnoresStride;
+    KernelTable t = *x.kernels;
+    t.prefilterXSobel = prefilterIgnoresStride;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;
@@ -725,7 +733,9 @@ const Backend& strideless() {
 const Backend& scribbler() {
   static const Backend b = [] {
     Backend x = make("wrong-mask");
-    x.kernels.horopterMask = maskModifiesInput;
+    KernelTable t = *x.kernels;
+    t.horopterMask = maskModifiesInput;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;
@@ -733,7 +743,9 @@ const Backend& scribbler() {
 const Backend& noSpeckles() {
   static const Backend b = [] {
     Backend x = make("wrong-speckles");
-    x.kernels.filterSpeckles = speckleNoop;
+    KernelTable t = *x.kernels;
+    t.filterSpeckles = speckleNoop;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;
@@ -741,7 +753,9 @@ const Backend& noSpeckles() {
 const Backend& truncatingCheck() {
   static const Backend b = [] {
     Backend x = make("wrong-lr");
-    x.kernels.leftRightCheck = lrTruncates;
+    KernelTable t = *x.kernels;
+    t.leftRightCheck = lrTruncates;
+    x.kernels = std::make_shared<const KernelTable>(t);
     return x;
   }();
   return b;

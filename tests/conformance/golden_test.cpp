@@ -15,9 +15,9 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
 #include "test_support.hpp"
 

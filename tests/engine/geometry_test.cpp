@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/error.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/geometry.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/kernels.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

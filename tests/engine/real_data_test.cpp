@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "horopter/kernels.hpp"
-#include "horopter/opencv.hpp"
-#include "horopter/stereo_eval.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/opencv.hpp"
 #include "naive_reference.hpp"
 #include "test_support.hpp"
 

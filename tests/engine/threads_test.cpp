@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/kernels.hpp"
-#include "horopter/thread_pool.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "schedule/thread_pool.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <thread>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_devices.hpp"

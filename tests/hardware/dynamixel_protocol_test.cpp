@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/dynamixel_protocol.hpp"
 
 namespace dxl = horopter::hw::dxl;

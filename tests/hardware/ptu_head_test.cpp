@@ -6,7 +6,7 @@
 #include <cmath>
 #include <thread>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/ptu_head.hpp"
 #include "horopter/hardware/scripted_transport.hpp"
 #include "horopter/hardware/serial_port.hpp"

@@ -6,7 +6,7 @@
 
 #include <numbers>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/ptu_protocol.hpp"
 
 namespace ptu = horopter::hw::ptu;

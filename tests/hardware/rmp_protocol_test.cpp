@@ -8,7 +8,7 @@
 
 #include <numbers>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/rmp_protocol.hpp"
 
 namespace rmp = horopter::hw::rmp;

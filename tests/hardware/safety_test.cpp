@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/rmp_base.hpp"
 #include "horopter/hardware/sim_rmp.hpp"

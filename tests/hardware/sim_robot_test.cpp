@@ -6,7 +6,7 @@
 #include <fstream>
 #include <thread>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/sim_robot.hpp"
 
 using namespace horopter::hw;

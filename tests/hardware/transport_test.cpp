@@ -5,7 +5,7 @@
 
 #include <sstream>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/rmp_protocol.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "horopter/detection.hpp"
+#include "horopter/interaction/detection.hpp"
 
 namespace horopter {
 namespace {

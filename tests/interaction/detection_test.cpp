@@ -10,10 +10,11 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/detection.hpp"
-#include "horopter/error.hpp"
-#include "horopter/synthetic_scene.hpp"
-#include "horopter/tracking_eval.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/tracking_eval.hpp"
+#include "horopter/interaction/detection.hpp"
+#include "horopter/sim/sim_frame.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter {
 namespace {
@@ -24,10 +25,10 @@ bool texturesPresent() {
   return std::filesystem::exists(kDefaultFaceCascade);
 }
 
-Frame renderedFrame(int index) {
+sim::SimFrame renderedFrame(int index) {
   synth::SyntheticScene scene(synth::SceneOptions{});
   synth::SyntheticFrame f = scene.render(index);
-  Frame frame;
+  sim::SimFrame frame;
   frame.index = index;
   frame.left = f.left;
   frame.right = f.right;
@@ -43,8 +44,8 @@ bool near(cv::Point2f a, cv::Point2f b, double tolerance) {
 TEST(Detection, RegionFindsTheFaceInsideTheZoneOnly) {
   if (!texturesPresent())
     GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
-  const Frame frame = renderedFrame(100);
-  const auto& truth = std::any_cast<const synth::FrameTruth&>(frame.truth);
+  const sim::SimFrame frame = renderedFrame(100);
+  const auto& truth = frame.truth;
   const synth::PersonTruth& main = truth.people[0];
   ASSERT_TRUE(main.insideZone && main.visible);
   Detector detector(DetectorOptions{});
@@ -64,7 +65,7 @@ TEST(Detection, RegionFindsTheFaceInsideTheZoneOnly) {
 TEST(Detection, FullImageSeesMoreThanTheZone) {
   if (!texturesPresent())
     GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
-  const Frame frame = renderedFrame(100);
+  const sim::SimFrame frame = renderedFrame(100);
   DetectorOptions region, full;
   full.scope = DetectionScope::FullImage;
   const Detections r = Detector(region).detect(frame);
@@ -87,7 +88,7 @@ TEST(Detection, FollowingFindsTheFaceAFullSearchFinds) {
   followOptions.fullSearchEvery = 5;
   Detector following(followOptions), full(DetectorOptions{});
   for (int index = 100; index < 104; ++index) {
-    const Frame frame = renderedFrame(index);
+    const sim::SimFrame frame = renderedFrame(index);
     const Detections a = following.detect(frame), b = full.detect(frame);
     ASSERT_FALSE(b.faces.empty()) << "frame " << index;
     ASSERT_EQ(a.faces.size(), b.faces.size()) << "frame " << index;
@@ -108,7 +109,7 @@ TEST(Detection, SkinGuidedSearchFindsTheFaceTheExhaustiveSearchFinds) {
   exhaustiveOptions.exhaustiveSearchEvery = 1;
   Detector guided(guidedOptions), exhaustive(exhaustiveOptions);
   for (int index = 100; index < 103; ++index) {
-    const Frame frame = renderedFrame(index);
+    const sim::SimFrame frame = renderedFrame(index);
     const Detections a = guided.detect(frame), b = exhaustive.detect(frame);
     EXPECT_TRUE(a.fullFaceSearch && b.fullFaceSearch);
     ASSERT_EQ(b.faces.size(), 1u) << "frame " << index;
@@ -126,8 +127,8 @@ TEST(Detection, FacesSizedByDepthStillFound) {
     GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
   Detector detector(DetectorOptions{});
   for (int index = 100; index < 106; ++index) {
-    Frame frame = renderedFrame(index);
-    const auto& truth = std::any_cast<const synth::FrameTruth&>(frame.truth);
+    sim::SimFrame frame = renderedFrame(index);
+    const auto& truth = frame.truth;
     frame.disparity = truth.disparity;
     const Detections d = detector.detect(frame);
     ASSERT_EQ(d.faces.size(), 1u) << "frame " << index;
@@ -252,13 +253,13 @@ TEST(Detection, AWrongFaceSizeFromDepthIsForgotten) {
     o.depthSizeForgetSearches = forgetAfter;
     Detector detector(o);
     for (int index = 100; index < 104; ++index) {  // k learnt from the truth
-      Frame frame = renderedFrame(index);
-      frame.disparity = std::any_cast<const synth::FrameTruth&>(frame.truth).disparity;
+      sim::SimFrame frame = renderedFrame(index);
+      frame.disparity = frame.truth.disparity;
       EXPECT_EQ(detector.detect(frame).faces.size(), 1u) << index;
     }
     for (int k = 1; k <= 14; ++k) {
-      Frame frame = renderedFrame(104 + k);
-      frame.disparity = std::any_cast<const synth::FrameTruth&>(frame.truth).disparity * 4;
+      sim::SimFrame frame = renderedFrame(104 + k);
+      frame.disparity = frame.truth.disparity * 4;
       if (!detector.detect(frame).faces.empty()) return k;
     }
     return 0;  // never
@@ -274,7 +275,7 @@ TEST(Detection, AWrongFaceSizeFromDepthIsForgotten) {
 TEST(Detection, SkinDarkerThanTheFaceIsNotAHand) {
   if (!texturesPresent())
     GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
-  const Frame frame = renderedFrame(100);
+  const sim::SimFrame frame = renderedFrame(100);
   DetectorOptions o;
   o.minSkinLumaOfFace = 0;
   const Detections all = Detector(o).detect(frame);

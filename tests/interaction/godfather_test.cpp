@@ -1,8 +1,8 @@
 // The godfather election with a fake clock: the frame times are given.
 #include <gtest/gtest.h>
 
-#include "horopter/error.hpp"
-#include "horopter/godfather.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/godfather.hpp"
 
 namespace horopter {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "horopter/detection.hpp"
+#include "horopter/interaction/detection.hpp"
 
 namespace horopter::testing {
 

@@ -13,9 +13,10 @@
 #include <vector>
 
 #include "hand_candidate.hpp"
-#include "horopter/error.hpp"
-#include "horopter/head_control.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/app/frame.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/head_control.hpp"
+#include "horopter/interaction/tracking.hpp"
 
 namespace horopter {
 namespace {
@@ -25,6 +26,11 @@ const cv::Point2f kHead(320, 120);
 
 HandDetection hand(cv::Point2f at, float radiusPx = 12, float agreement = 1, int areaPx = 0) {
   return testing::handCandidate(at, radiusPx, agreement, areaPx);
+}
+
+// The tracker on a frame that carries its detections, as the tracking stage runs it.
+TrackingState updateWith(BodyTracker& tracker, const Frame& frame, BodySample& body) {
+  return tracker.update(frame, *frame.detections, body);
 }
 
 Frame frameWith(std::int64_t index, std::vector<HandDetection> hands) {
@@ -60,7 +66,7 @@ bool near(cv::Point2f a, cv::Point2f b, float tolerance = 3) {
 TEST(HandTracking, BothHandsStartOnTheirOwnSides) {
   BodyTracker tracker(immediateElection());
   BodySample body;
-  tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
   ASSERT_TRUE(body.godfather);
   ASSERT_TRUE(body.leftHand.tracked && body.rightHand.tracked);
   EXPECT_TRUE(near(body.leftHand.image, kLeftRest));
@@ -78,11 +84,11 @@ TEST(HandTracking, AHandsTrackDoesNotCrossToTheOtherSide) {
   BodySample body;
   // The left hand rests just right of the head's vertical.
   const cv::Point2f left(kHead.x + 0.3f * kFace, kHead.y + 3 * kFace);
-  tracker.update(frameWith(0, {hand(left), hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(0, {hand(left), hand(kRightRest)}), body);
   ASSERT_TRUE(near(body.leftHand.image, left));
   // Next frame the left hand is gone; a blob appears a face width left of the head.
   const cv::Point2f across(kHead.x - 1.0f * kFace, kHead.y + 3 * kFace);
-  tracker.update(frameWith(1, {hand(across), hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(1, {hand(across), hand(kRightRest)}), body);
   ASSERT_TRUE(body.leftHand.tracked);
   EXPECT_FALSE(body.leftHand.observed) << "the left hand took a candidate on the right's side";
   EXPECT_GT(body.leftHand.image.x, kHead.x);
@@ -96,13 +102,14 @@ TEST(HandTracking, ThinSliversAndStereoMismatchesAreNotHands) {
   // and a blob whose pixels disagree between the views where the right one
   // rests.
   const HandDetection sliver = hand(kLeftRest, 1.5f, 1, 450);
-  tracker.update(frameWith(0, {sliver, hand(kRightRest, 12, 0.3f)}), body);
+  updateWith(tracker, frameWith(0, {sliver, hand(kRightRest, 12, 0.3f)}), body);
   EXPECT_FALSE(body.leftHand.tracked);
   EXPECT_FALSE(body.rightHand.tracked);
   // The real hands arrive.
-  tracker.update(frameWith(1, {sliver, hand(kLeftRest + cv::Point2f(10, 0)),
-                               hand(kRightRest, 12, 0.3f), hand(kRightRest + cv::Point2f(0, 8))}),
-                 body);
+  updateWith(tracker,
+             frameWith(1, {sliver, hand(kLeftRest + cv::Point2f(10, 0)), hand(kRightRest, 12, 0.3f),
+                           hand(kRightRest + cv::Point2f(0, 8))}),
+             body);
   ASSERT_TRUE(body.leftHand.tracked && body.rightHand.tracked);
   EXPECT_TRUE(near(body.leftHand.image, kLeftRest + cv::Point2f(10, 0)));
   EXPECT_TRUE(near(body.rightHand.image, kRightRest + cv::Point2f(0, 8)));
@@ -116,9 +123,10 @@ TEST(HandTracking, SmallCandidatesNeedStereoAgreement) {
   BodyTracker tracker(immediateElection());
   BodySample body;
   const int small = static_cast<int>(0.03f * kFace * kFace);  // under 0.05 face widths squared
-  tracker.update(frameWith(0, {hand(kLeftRest, 0.07f * kFace, 0.95f, small),
-                               hand(kRightRest, 0.07f * kFace, 0.8f, small)}),
-                 body);
+  updateWith(tracker,
+             frameWith(0, {hand(kLeftRest, 0.07f * kFace, 0.95f, small),
+                           hand(kRightRest, 0.07f * kFace, 0.8f, small)}),
+             body);
   EXPECT_TRUE(body.leftHand.tracked) << "agreeing: a hand partly outside the zone";
   EXPECT_FALSE(body.rightHand.tracked) << "80 % agreement is not enough for a small one";
 }
@@ -129,12 +137,12 @@ TEST(HandTracking, ATrackOnASpeckMovesToTheSolidHand) {
   const cv::Point2f speck(kHead.x + 1.2f * kFace, kHead.y + 0.9f * kFace);
   // Only the speck (0.06 face widths squared, radius 0.1) on the left's side.
   const HandDetection small = hand(speck, 0.1f * kFace, 1, static_cast<int>(0.06f * kFace * kFace));
-  tracker.update(frameWith(0, {small, hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(0, {small, hand(kRightRest)}), body);
   ASSERT_TRUE(body.leftHand.tracked);
   ASSERT_TRUE(near(body.leftHand.image, speck));
   // The hand appears far from the speck, beyond any gate.
   const cv::Point2f raised(kHead.x + 3.0f * kFace, kHead.y - 1.0f * kFace);
-  tracker.update(frameWith(1, {small, hand(raised), hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(1, {small, hand(raised), hand(kRightRest)}), body);
   EXPECT_TRUE(near(body.leftHand.image, raised)) << body.leftHand.image;
   EXPECT_TRUE(near(body.rightHand.image, kRightRest));
 }
@@ -146,7 +154,7 @@ TEST(HandTracking, TheHeadFollowsItsSkinBlobWhenTheFaceIsMissed) {
   o.coastS = 0.05;  // two frames without the head would drop it
   BodyTracker tracker(o);
   BodySample body;
-  tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+  updateWith(tracker, frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
   ASSERT_TRUE(body.head.tracked);
   for (int i = 1; i <= 6; ++i) {
     Frame f = frameWith(
@@ -154,7 +162,7 @@ TEST(HandTracking, TheHeadFollowsItsSkinBlobWhenTheFaceIsMissed) {
     auto d = std::make_shared<Detections>(*f.detections);
     d->faces.clear();
     f.detections = d;
-    tracker.update(f, body);
+    updateWith(tracker, f, body);
     ASSERT_TRUE(body.godfather && body.head.tracked) << "frame " << i;
     EXPECT_TRUE(body.head.observed);
     EXPECT_TRUE(near(body.head.image, kHead + cv::Point2f(0, 6), 4)) << body.head.image;
@@ -176,10 +184,10 @@ TEST(HandTracking, ACoastingTrackMovesToTheCandidateOnItsSide) {
     o.coastJumpS = jumpS;
     BodyTracker tracker(o);
     BodySample body;
-    tracker.update(frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
+    updateWith(tracker, frameWith(0, {hand(kLeftRest), hand(kRightRest)}), body);
     ASSERT_TRUE(near(body.rightHand.image, kRightRest));
     for (int i = 1; i <= 5; ++i) {
-      tracker.update(frameWith(i, {hand(kLeftRest), small}), body);
+      updateWith(tracker, frameWith(i, {hand(kLeftRest), small}), body);
       ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
       // 30 frames/s: frame 4 is the first more than 0.1 s after the last
       // update (frame 3, exactly 0.1 s, is left out).
@@ -227,7 +235,7 @@ TEST(HandTracking, AHandWhereStereoIsBlindIsFollowedByItsLook) {
       if (i < firstBlind) candidates.push_back(::horopter::hand(hand));
       Frame frame = frameWith(i, candidates);
       paintViews(frame, hand, 70);
-      tracker.update(frame, body);
+      updateWith(tracker, frame, body);
       ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
       if (i < firstBlind) continue;
       EXPECT_EQ(body.rightHand.observed, blind) << "frame " << i;
@@ -253,7 +261,7 @@ TEST(HandTracking, AHandMissedWhereStereoSeesIsNotFollowedByItsLook) {
     if (i < 2) candidates.push_back(::horopter::hand(hand));
     Frame frame = frameWith(i, candidates);
     paintViews(frame, hand, 90);  // near the range's end, but measured
-    tracker.update(frame, body);
+    updateWith(tracker, frame, body);
     ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
     EXPECT_EQ(body.rightHand.observed, i < 2) << "frame " << i;
   }
@@ -271,7 +279,7 @@ TEST(HandTracking, TracksMoveWithTheImageWhenTheHeadTurns) {
     TrackerOptions o = immediateElection();
     o.rig = rig;
     if (follow)
-      o.capturePose = [&](const Frame& f) -> std::optional<hw::HeadAngles> {
+      o.capturePose = [&](const StereoFrame& f) -> std::optional<hw::HeadAngles> {
         return f.index < 3 ? ahead : turned;
       };
     BodyTracker tracker(o);
@@ -285,7 +293,7 @@ TEST(HandTracking, TracksMoveWithTheImageWhenTheHeadTurns) {
       auto detections = std::make_shared<Detections>(*frame.detections);
       detections->faces[0].centre = at(kHead);
       frame.detections = detections;
-      tracker.update(frame, body);
+      updateWith(tracker, frame, body);
       ASSERT_TRUE(body.godfather) << "frame " << i;
       EXPECT_EQ(body.rightHand.observed && near(body.rightHand.image, at(kRightRest)),
                 follow || !turnedNow)

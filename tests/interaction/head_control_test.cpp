@@ -8,10 +8,11 @@
 #include <numbers>
 #include <optional>
 
-#include "horopter/error.hpp"
-#include "horopter/head_control.hpp"
+#include "horopter/app/interaction_stages.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/head_control.hpp"
+#include "horopter/interaction/tracking.hpp"
 #include "horopter/sim/closed_loop.hpp"
-#include "horopter/tracking.hpp"
 
 namespace horopter {
 namespace {
@@ -138,7 +139,7 @@ double commandedPan(HeadControlOptions o, float headX, float rightX, float leftX
   std::optional<hw::HeadAngles> sent;
   auto stage = makeHeadControlStage(
       o,
-      [](const Frame&) {
+      [](const StereoFrame&) {
         return std::optional<hw::HeadAngles>(hw::HeadAngles{0, 0, 0.06});
       },
       [&](std::int64_t, const std::optional<hw::HeadAngles>& c) { sent = c; });

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "horopter/error.hpp"
-#include "horopter/kalman_track.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/kalman_track.hpp"
 
 namespace horopter {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
-#include "horopter/skin_model.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/interaction/skin_model.hpp"
 
 namespace horopter {
 namespace {

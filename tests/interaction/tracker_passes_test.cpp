@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hand_candidate.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/interaction/tracking.hpp"
 #include "interaction/tracker_passes.hpp"
 
 namespace horopter::detail {
@@ -106,7 +106,7 @@ TEST(TrackerPasses, FrameTimeIsIndexOverRateOrCaptureTimeSinceTheFirst) {
   TrackerOptions o;
   o.framesPerSecond = 30;
   FrameClock clock;
-  Frame frame;
+  StereoFrame frame;
   frame.index = 45;
   frame.captured = SteadyClock::time_point(std::chrono::seconds(7));
   EXPECT_DOUBLE_EQ(frameTimeS(frame, o, clock), 1.5);
@@ -554,7 +554,7 @@ TEST(TrackerPasses, TheReportFillsTheBodyOnlyForTheGodfather) {
   s.faceWidth = 60;
   s.hands[0] = handAt({420, 380}, 0.5);
   s.hands[1] = handAt({220, 380}, 1.0);
-  Frame frame;
+  StereoFrame frame;
   frame.index = 30;
   BodySample body;
   TrackingState st = reportState(frame, 1.0, ElectionState::Godfather, 2.5, s, o.rig, body);

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "horopter/tracking_eval.hpp"
+#include "horopter/eval/tracking_eval.hpp"
 
 namespace horopter {
 namespace {

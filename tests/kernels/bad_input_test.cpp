@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/backend.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "naive_reference.hpp"
 #include "sad/sad.hpp"
 #include "test_support.hpp"

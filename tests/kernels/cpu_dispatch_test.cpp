@@ -9,8 +9,9 @@
 
 #include "common/cpu_backend.hpp"
 #include "common/cpu_features.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/devices.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/devices.hpp"
 #include "scoped_env.hpp"
 
 namespace horopter::test {
@@ -49,8 +50,8 @@ TEST(CpuDispatch, Avx2IsAvailableExactlyWhereEveryFeatureIs) {
 TEST(CpuDispatch, NoScalarKernelIsAnAvx2One) {
   const Backend* avx2 = backendNamed("avx2");
   ASSERT_NE(avx2, nullptr);
-  const KernelTable& s = scalarBackend().kernels;
-  const KernelTable& a = avx2->kernels;
+  const KernelTable& s = *scalarBackend().kernels;
+  const KernelTable& a = *avx2->kernels;
   EXPECT_NE(s.prefilterXSobel, a.prefilterXSobel);
   EXPECT_NE(s.matchBlocks, a.matchBlocks);
   EXPECT_NE(s.leftRightCheck, a.leftRightCheck);
@@ -66,7 +67,7 @@ TEST(CpuDispatch, CpuBackendFollowsHoropterBackend) {
   {
     const ScopedEnv forced("HOROPTER_BACKEND", "scalar");
     EXPECT_EQ(&cpuBackend(), &scalarBackend());
-    EXPECT_TRUE(sameTable(cpuBackend().kernels, scalarBackend().kernels));
+    EXPECT_TRUE(sameTable(*cpuBackend().kernels, *scalarBackend().kernels));
     EXPECT_EQ(&findBackend("auto"), &scalarBackend());
   }
   {

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/frontend.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "naive_reference.hpp"
 #include "sad/sad.hpp"
 #include "test_support.hpp"

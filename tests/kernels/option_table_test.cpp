@@ -6,9 +6,9 @@
 #include <set>
 #include <string>
 
-#include "horopter/error.hpp"
-#include "horopter/option_table.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/core/option_table.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
 namespace {

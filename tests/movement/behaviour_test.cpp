@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "horopter/behaviour.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/movement/behaviour.hpp"
 
 namespace horopter {
 namespace {

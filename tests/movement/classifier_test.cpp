@@ -8,9 +8,9 @@
 #include <fstream>
 #include <memory>
 
-#include "horopter/error.hpp"
-#include "horopter/movement_classifier.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/movement_training.hpp"
+#include "horopter/movement/movement_classifier.hpp"
 
 namespace horopter {
 namespace {

@@ -8,7 +8,7 @@
 #include "eval/bootstrap.hpp"
 #include "eval/interaction_report.hpp"
 #include "eval/seed_ranges.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter::eval {
 namespace {

@@ -2,9 +2,9 @@
 // one at a time, and bad options are clear errors.
 #include <gtest/gtest.h>
 
-#include "horopter/error.hpp"
-#include "horopter/interaction_eval.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/interaction_eval.hpp"
+#include "horopter/eval/movement_training.hpp"
 
 namespace horopter {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "horopter/lma.hpp"
+#include "horopter/movement/lma.hpp"
 
 namespace horopter {
 namespace {

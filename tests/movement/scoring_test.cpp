@@ -1,7 +1,7 @@
 // Per-movement scoring (Table III's definitions).
 #include <gtest/gtest.h>
 
-#include "horopter/movement_scoring.hpp"
+#include "horopter/eval/movement_scoring.hpp"
 
 namespace horopter {
 namespace {

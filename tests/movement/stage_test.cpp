@@ -6,10 +6,11 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "horopter/error.hpp"
+#include "horopter/app/interaction_stages.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/movement_training.hpp"
 #include "horopter/hardware/base.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/movement/movement.hpp"
 
 namespace horopter {
 namespace {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "horopter/body_track_file.hpp"
-#include "horopter/error.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/movement_training.hpp"
+#include "horopter/movement/body_track_file.hpp"
 
 namespace horopter {
 namespace {

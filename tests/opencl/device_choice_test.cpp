@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "horopter/backend.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/backend.hpp"
 #include "opencl/device.hpp"
 #include "opencl_support.hpp"
 

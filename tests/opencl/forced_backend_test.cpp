@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "common/cpu_backend.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/opencl_frontend.hpp"
+#include "common/kernel_table.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
 #include "opencl/cpu_speckles.hpp"
 #include "opencl_support.hpp"
 #include "scoped_env.hpp"
@@ -48,13 +49,13 @@ TEST(OpenClForcedBackend, KernelTableSpeckleFilterFollowsIt) {
   TestImage d = randomDisparityMap(64, 32, params, 11, 20);
   {
     const ScopedEnv forced("HOROPTER_BACKEND", "scalar");
-    device.kernels.filterSpeckles(d.view(), params);
+    device.kernels->filterSpeckles(d.view(), params);
     ASSERT_NE(opencl::lastSpeckleBackend(), nullptr);
     EXPECT_EQ(opencl::lastSpeckleBackend()->name, "scalar");
   }
   {
     const ScopedEnv unset("HOROPTER_BACKEND", nullptr);
-    device.kernels.filterSpeckles(d.view(), params);
+    device.kernels->filterSpeckles(d.view(), params);
     EXPECT_EQ(opencl::lastSpeckleBackend(), &bestCpuBackend());
   }
 }

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "common/cpu_backend.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencl_frontend.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencl_frontend.hpp"
 #include "opencl/pipeline.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl_support.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "opencl/device.hpp"
 #include "opencl/launch.hpp"
 #include "opencl/program_cache.hpp"

@@ -8,12 +8,12 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "horopter/capture.hpp"
-#include "horopter/error.hpp"
-#include "horopter/frontend.hpp"
-#include "horopter/opencv.hpp"
+#include "horopter/app/vision_stages.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/sim/synthetic_source.hpp"
-#include "horopter/vision_stages.hpp"
+#include "horopter/vision/capture.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 namespace {
@@ -177,7 +177,7 @@ TEST(Capture, PipelineFrontEndEqualsTheFrontEndCalledDirectly) {
         .add(makeDisparityStage(stereo, median, scalarBackend(), 2))
         .add(makeMaskStage([&](const Frame&, std::vector<std::int16_t>& out) { out = thresholds; },
                            stereo, scalarBackend()));
-    auto source = openSource("dir:" + dir.string(), {});
+    auto source = frameSourceOf(openSource("dir:" + dir.string(), {}));
     pipeline.run(*source);
     ASSERT_EQ(masks.size(), 4u);
     for (int i = 0; i < 4; ++i)

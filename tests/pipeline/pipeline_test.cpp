@@ -14,8 +14,8 @@
 #include <sstream>
 #include <thread>
 
-#include "horopter/error.hpp"
-#include "horopter/pipeline.hpp"
+#include "horopter/app/frame.hpp"
+#include "horopter/core/error.hpp"
 
 namespace horopter {
 namespace {

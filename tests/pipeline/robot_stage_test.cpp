@@ -10,11 +10,11 @@
 #include <fstream>
 #include <thread>
 
-#include "horopter/error.hpp"
+#include "horopter/app/robot_stage.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/hardware/sim_robot.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/robot_stage.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/movement/movement.hpp"
 
 namespace horopter {
 namespace {

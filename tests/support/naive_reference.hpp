@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <span>
 
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test::naive {

@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "horopter/image.hpp"
-#include "horopter/stereo_params.hpp"
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::test {
 

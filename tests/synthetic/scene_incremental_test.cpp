@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "horopter/error.hpp"
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::synth {
 namespace {

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <set>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::synth {
 namespace {

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "horopter/error.hpp"
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 #include "synthetic/room.hpp"
 
 namespace horopter::synth {

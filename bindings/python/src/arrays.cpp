@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "horopter/opencv.hpp"
+#include "horopter/vision/opencv.hpp"
 
 namespace horopter::python {
 

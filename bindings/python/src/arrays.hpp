@@ -17,7 +17,7 @@
 #include <span>
 #include <string>
 
-#include "horopter/image.hpp"
+#include "horopter/core/image.hpp"
 
 namespace horopter::python {
 

@@ -11,9 +11,9 @@
 #include "bindings.hpp"
 #include "eval/interaction_report.hpp"
 #include "eval/seed_ranges.hpp"
-#include "horopter/error.hpp"
-#include "horopter/interaction_eval.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/interaction_eval.hpp"
+#include "horopter/eval/movement_training.hpp"
 
 namespace horopter::python {
 

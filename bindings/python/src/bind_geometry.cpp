@@ -5,7 +5,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "horopter/geometry.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter::python {
 

@@ -3,7 +3,7 @@
 // released while the kernel runs.
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "horopter/kernels.hpp"
+#include "horopter/kernels/kernels.hpp"
 
 namespace horopter::python {
 

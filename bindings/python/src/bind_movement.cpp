@@ -5,10 +5,10 @@
 
 #include "bindings.hpp"
 #include "frame_dicts.hpp"
-#include "horopter/body_track_file.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/movement_classifier.hpp"
-#include "horopter/movement_training.hpp"
+#include "horopter/eval/movement_training.hpp"
+#include "horopter/movement/body_track_file.hpp"
+#include "horopter/movement/movement.hpp"
+#include "horopter/movement/movement_classifier.hpp"
 
 namespace horopter::python {
 

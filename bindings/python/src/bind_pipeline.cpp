@@ -15,9 +15,9 @@
 
 #include "bindings.hpp"
 #include "frame_dicts.hpp"
-#include "horopter/error.hpp"
-#include "horopter/movement_classifier.hpp"
-#include "horopter/pipeline_builder.hpp"
+#include "horopter/app/pipeline_builder.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/movement/movement_classifier.hpp"
 #include "horopter/sim/synthetic_source.hpp"
 #include "stereo_args.hpp"
 
@@ -92,7 +92,11 @@ class PipelineRun {
  private:
   void push(const Frame& f) {
     digest_ = foldDigest(digest_, frameDigest(f));  // frames come in order, on one thread
-    auto copy = std::make_unique<Frame>(f);  // Mat headers: the pixels are shared, not copied
+    // Mat headers: the pixels are shared, not copied. A simulated frame keeps
+    // its type, and so its truth.
+    const auto* simulated = dynamic_cast<const sim::SimFrame*>(&f);
+    std::unique_ptr<Frame> copy = simulated != nullptr ? std::make_unique<sim::SimFrame>(*simulated)
+                                                       : std::make_unique<Frame>(f);
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return queue_.size() < capacity_ || closed_; });
     if (closed_) return;

@@ -2,8 +2,8 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "frame_dicts.hpp"
-#include "horopter/geometry.hpp"
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
+#include "horopter/vision/geometry.hpp"
 
 namespace horopter::python {
 

@@ -4,7 +4,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "horopter/frontend.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "stereo_args.hpp"
 
 namespace horopter::python {
@@ -117,7 +117,7 @@ void bindStereo(py::module_& m) {
       },
       "The integer stereo parameters as declared once in the library: name, CLI flag, unit, "
       "range, default, help");
-  // The integer parameters from their table (horopter/stereo_params.hpp).
+  // The integer parameters from their table (horopter/kernels/stereo_params.hpp).
   for (const IntOption<StereoParams>& o : stereoOptions()) {
     const auto member = o.member;
     paramsClass.def_property(

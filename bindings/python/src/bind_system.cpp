@@ -6,9 +6,9 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "horopter/backend.hpp"
-#include "horopter/devices.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/devices.hpp"
 
 namespace horopter::python {
 

@@ -3,9 +3,10 @@
 #include <pybind11/stl.h>
 
 #include "arrays.hpp"
-#include "horopter/detection.hpp"
-#include "horopter/godfather.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/interaction/detection.hpp"
+#include "horopter/interaction/godfather.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/sim/sim_frame.hpp"
 
 namespace horopter::python {
 
@@ -194,7 +195,7 @@ py::dict frameDict(const Frame& frame) {
   std::copy(frame.thresholds.begin(), frame.thresholds.end(), thresholds.mutable_data());
   d["thresholds"] = thresholds;
   d["body"] = bodyDict(frame.body);
-  const auto* truth = std::any_cast<synth::FrameTruth>(&frame.truth);
+  const synth::FrameTruth* truth = sim::truthOf(frame);
   d["truth"] = truth ? py::object(truthDict(*truth)) : py::none();
   d["movement"] = frame.movement ? py::object(movementDict(*frame.movement)) : py::none();
   d["detections"] = frame.detections ? py::object(detectionsDict(*frame.detections)) : py::none();

@@ -4,10 +4,10 @@
 
 #include <pybind11/pybind11.h>
 
-#include "horopter/body.hpp"
-#include "horopter/movement.hpp"
-#include "horopter/pipeline.hpp"
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/app/frame.hpp"
+#include "horopter/interaction/body.hpp"
+#include "horopter/movement/movement.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::python {
 

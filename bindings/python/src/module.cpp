@@ -3,7 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 
 PYBIND11_MODULE(horopter, m) {
   namespace py = pybind11;

@@ -1,7 +1,7 @@
 #include "stereo_args.hpp"
 
-#include "horopter/error.hpp"
-#include "horopter/option_table.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/core/option_table.hpp"
 
 namespace horopter::python {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "horopter/stereo_params.hpp"
+#include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::python {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 #include "synthetic/primitives.hpp"
 #include "synthetic/vec3.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/primitives.hpp"
 #include "synthetic/rasteriser.hpp"

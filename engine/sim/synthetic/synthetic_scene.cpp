@@ -1,13 +1,13 @@
 // SyntheticScene: options, head pose, caches of the static room per view;
-// see include/horopter/synthetic_scene.hpp.
-#include "horopter/synthetic_scene.hpp"
+// see include/horopter/sim/synthetic_scene.hpp.
+#include "horopter/sim/synthetic_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
-#include "horopter/error.hpp"
+#include "horopter/core/error.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/rasteriser.hpp"
 #include "synthetic/room.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::synth {
 

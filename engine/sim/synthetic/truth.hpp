@@ -4,7 +4,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "horopter/synthetic_scene.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 #include "synthetic/people.hpp"
 #include "synthetic/rasteriser.hpp"
 #include "synthetic/row_intervals.hpp"

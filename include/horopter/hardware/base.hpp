@@ -9,7 +9,7 @@
 // bad frames, the RMP's own e-stop and a lost link.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <chrono>
 #include <optional>

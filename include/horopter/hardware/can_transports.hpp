@@ -4,7 +4,7 @@
 // every machine; this one always is).
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <condition_variable>
 #include <deque>

@@ -16,7 +16,7 @@
 // with "pan positive turns right" for each eye).
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <memory>
 #include <mutex>

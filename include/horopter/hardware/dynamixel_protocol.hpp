@@ -19,7 +19,7 @@
 // tests/hardware/dynamixel_protocol_test.cpp.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -8,7 +8,7 @@
 // simulated robot for the pipeline is in sim_robot.hpp.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <chrono>
 #include <optional>
@@ -19,7 +19,7 @@ namespace horopter::hw {
 using Clock = std::chrono::steady_clock;
 
 // Radians. Pan positive turns the view to the right, tilt positive looks
-// down (the rig frame of include/horopter/synthetic_scene.hpp); vergence is
+// down (the rig frame of include/horopter/sim/synthetic_scene.hpp); vergence is
 // the total angle between the two optical axes (0: parallel), split equally
 // between the eyes on a head with two vergence axes.
 struct HOROPTER_API HeadAngles {

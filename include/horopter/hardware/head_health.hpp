@@ -1,7 +1,7 @@
 // What a head driver reports about its link, beside the measured angles.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <string>
 

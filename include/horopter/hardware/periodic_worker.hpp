@@ -3,7 +3,7 @@
 // not make the next ones burst to catch up: the schedule restarts from now.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <chrono>
 #include <condition_variable>

@@ -11,7 +11,7 @@
 // or do not parse are retried and counted; "!P"/"!T" limit hits are reported.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <memory>
 #include <mutex>

@@ -19,7 +19,7 @@
 //             position command has been reached)
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <optional>
 #include <string>

@@ -3,7 +3,7 @@
 // crosses a real tty exactly as with a USB-serial adapter.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <chrono>
 #include <cstdint>

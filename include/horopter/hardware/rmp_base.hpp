@@ -14,7 +14,7 @@
 // step(now) with the time you choose.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <functional>
 #include <memory>

@@ -44,7 +44,7 @@
 //   ck: sum of bytes 0..16, carries folded twice into 8 bits, then two's complement.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <array>
 #include <cstddef>

@@ -3,7 +3,7 @@
 // recorded (and the reply withheld), and the link can be cut.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <deque>
 #include <mutex>

@@ -3,7 +3,7 @@
 // side of a pseudo-terminal (the simulated devices' wire).
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <string>
 

@@ -3,7 +3,7 @@
 // stage writes it for whatever robot it drives.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <fstream>
 #include <mutex>

@@ -13,7 +13,7 @@
 //     received meanwhile are dropped, so the base does not lurch off on release.
 #pragma once
 
-#include "horopter/export.hpp"
+#include "horopter/core/export.hpp"
 
 #include <chrono>
 

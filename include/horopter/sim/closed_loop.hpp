@@ -13,11 +13,12 @@
 #include <string>
 #include <utility>
 
+#include "horopter/app/interaction_stages.hpp"
 #include "horopter/hardware/head.hpp"
-#include "horopter/head_control.hpp"
-#include "horopter/pipeline.hpp"
-#include "horopter/synthetic_scene.hpp"
-#include "horopter/tracking.hpp"
+#include "horopter/interaction/head_control.hpp"
+#include "horopter/interaction/tracking.hpp"
+#include "horopter/sim/sim_frame.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::sim {
 
@@ -66,6 +67,7 @@ class ClosedLoopSyntheticSource : public FrameSource {
                             int actuationDelayFrames = HeadControlOptions{}.actuationDelayFrames,
                             hw::HeadLimits limits = HeadControlOptions{}.limits);
   std::string name() const override { return "synthetic (closed loop)"; }
+  std::unique_ptr<ScheduledFrame> newFrame() override { return std::make_unique<SimFrame>(); }
   bool next(Frame& frame) override;
   synth::SyntheticScene& scene() { return scene_; }
   const std::shared_ptr<SyntheticRigHead>& head() const { return head_; }

@@ -8,19 +8,20 @@
 #include <memory>
 #include <string>
 
-#include "horopter/pipeline.hpp"
-#include "horopter/pipeline_builder.hpp"
-#include "horopter/synthetic_scene.hpp"
-#include "horopter/vision_stages.hpp"
+#include "horopter/app/pipeline_builder.hpp"
+#include "horopter/app/vision_stages.hpp"
+#include "horopter/sim/sim_frame.hpp"
+#include "horopter/sim/synthetic_scene.hpp"
 
 namespace horopter::sim {
 
-// The synthetic scene, open loop. Each frame's truth is a synth::FrameTruth
-// in Frame::truth.
+// The synthetic scene, open loop. Its frames are SimFrames: truthOf() gives
+// their synth::FrameTruth.
 class SyntheticSource : public FrameSource {
  public:
   SyntheticSource(const synth::SceneOptions& options, int frames);
   std::string name() const override { return "synthetic"; }
+  std::unique_ptr<ScheduledFrame> newFrame() override { return std::make_unique<SimFrame>(); }
   bool next(Frame& frame) override;
   synth::SyntheticScene& scene() { return scene_; }
 

@@ -3,7 +3,7 @@
 // CMakeLists.txt beside this file, as written, and built against the install
 // tree alone. It sets no C++ standard of its own, so it compiles only if
 // horopter::horopter carries C++20 (the public headers use std::span).
-#include <horopter/frontend.hpp>
+#include <horopter/vision/frontend.hpp>
 
 #include <cstdint>
 #include <cstdio>

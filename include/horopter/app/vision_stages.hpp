@@ -1,0 +1,48 @@
+// The front end's stages for the frame pipeline: rectify (to grey), disparity
+// (prefilter, matching, cleanup, median) and the horopter mask.
+#pragma once
+
+#include "horopter/core/export.hpp"
+
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "horopter/app/frame.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
+
+namespace horopter {
+
+// Grey rectified views for the front end. With a `rectify` function (maps
+// computed once, e.g. from a calibration), it is applied to both captured
+// images first; without one the source is taken as rectified already.
+using RectifyFunction = std::function<void(const cv::Mat& left, const cv::Mat& right,
+                                           cv::Mat& leftOut, cv::Mat& rightOut)>;
+HOROPTER_API std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify = {});
+
+// The disparity of Frame::leftGrey/rightGrey (cleaned up, median-filtered)
+// into Frame::disparity, on `threads` threads of the stage's own pool. An
+// OpenCL backend runs the device-resident OpenClFrontend (with its CPU
+// fallback; `threads` are then the fallback's).
+HOROPTER_API std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo,
+                                                       const MedianParams& median,
+                                                       const Backend& backend, int threads);
+
+// Frame::thresholds from a function of the frame (the head's pose at capture
+// time makes the horopter dynamic), then Frame::mask from the disparity.
+using ThresholdFunction = std::function<void(const Frame& frame, std::vector<std::int16_t>& out)>;
+HOROPTER_API std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds,
+                                                  const StereoParams& stereo,
+                                                  const Backend& backend);
+
+// Thresholds for a source that is rectified already and has no calibration:
+// the fixation point is given by its disparity (px) on the centre column
+// (default: the middle of the search range) and the focal length (default:
+// the image width); thresholds in pixels do not depend on the baseline's
+// unit. Throws horopter::Error for a fixation that is not a positive disparity.
+HOROPTER_API ThresholdFunction
+fixationDisparityThresholds(const StereoParams& stereo, std::optional<double> fixationDisparityPx,
+                            std::optional<double> focalPx);
+
+}  // namespace horopter

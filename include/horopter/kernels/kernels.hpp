@@ -1,0 +1,71 @@
+// The front-end kernels, validated and dispatched to a backend.
+//
+// Each function checks its arguments (throwing horopter::Error with a message
+// that says what to fix) and then runs the chosen backend. The scalar
+// reference in kernels/<kernel>/<kernel>_scalar.cpp states the exact semantics.
+// `rows` limits the output rows written (for running stripes of one frame on
+// several threads); the default is the whole image. The speckle filter joins
+// pixels across the whole image and has no row range.
+#pragma once
+
+#include "horopter/core/export.hpp"
+
+#include <cstdint>
+#include <span>
+
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
+
+namespace horopter {
+
+// Clipped horizontal Sobel. `filtered` (U8C1, may be empty) receives
+// clamp(sobel, -cap, cap) + cap in [0, 2 cap]; `texture` (U8C1, may be empty)
+// receives |clamp(sobel, -cap, cap)| in [0, cap]. Both sized as `src`.
+HOROPTER_API void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
+                                  const ImageView& texture,
+                                  const Backend& backend = scalarBackend(),
+                                  RowRange rows = RowRange::all());
+
+// SAD block matching with winner-take-all, texture and uniqueness checks and
+// sub-pixel refinement. `left`/`right` are U8C1 (prefiltered or raw), `texture`
+// U8C1 (may be empty when params.textureThreshold == 0). Writes `disparity`
+// (S16C1, 1/16 px) and `winnerRight` (S16C1, whole px: the right view's own
+// winner from the same costs, minDisparity - 1 where it has none).
+HOROPTER_API void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                              const ConstImageView& texture, const StereoParams& params,
+                              const ImageView& disparity, const ImageView& winnerRight,
+                              const Backend& backend = scalarBackend(),
+                              RowRange rows = RowRange::all());
+
+// Invalidates pixels whose disparity disagrees with the right view's winner by
+// more than params.disp12MaxDiff (no-op when it is negative).
+HOROPTER_API void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,
+                                 const StereoParams& params,
+                                 const Backend& backend = scalarBackend(),
+                                 RowRange rows = RowRange::all());
+
+// Invalidates connected blobs of at most params.speckleWindowSize pixels
+// (no-op when it is 0).
+HOROPTER_API void filterSpeckles(const ImageView& disparity, const StereoParams& params,
+                                 const Backend& backend = scalarBackend());
+
+// Invalid-aware median that fills holes; `src` and `dst` are S16C1 of the same
+// size and must not overlap.
+HOROPTER_API void medianFilter(const ConstImageView& src, const ImageView& dst,
+                               const MedianParams& median, std::int16_t invalid,
+                               const Backend& backend = scalarBackend(),
+                               RowRange rows = RowRange::all());
+
+// Horopter mask: 255 where the disparity is valid and >= thresholds[x], else 0.
+// `thresholds` holds one entry per column (1/16 px). When `segmented` is not
+// empty, it receives `image` (U8C1 or U8C3, the size of `disparity`) with the
+// pixels outside the mask zeroed.
+HOROPTER_API void horopterMask(const ConstImageView& disparity,
+                               std::span<const std::int16_t> thresholds, std::int16_t invalid,
+                               const ImageView& mask, const ConstImageView& image = {},
+                               const ImageView& segmented = {},
+                               const Backend& backend = scalarBackend(),
+                               RowRange rows = RowRange::all());
+
+}  // namespace horopter

@@ -1,0 +1,74 @@
+// The per-frame stereo front end: prefilter, SAD matching, left-right check,
+// speckle filter, hole-filling median, horopter mask. It owns its buffers
+// (allocated when the frame size changes, reused otherwise) and runs the
+// kernels of one backend. With threads > 1 each kernel runs as horizontal
+// stripes on a pool of that many threads (the caller's included); the result
+// is the one-thread result bit for bit. The speckle filter, which joins pixels
+// across the whole frame, runs on one thread.
+#pragma once
+
+#include "horopter/core/export.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+
+#include "horopter/core/image.hpp"
+#include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/stereo_params.hpp"
+
+namespace horopter {
+
+class ThreadPool;  // internal: engine/schedule/thread_pool.hpp
+
+// Wall time of each stage of the last frame, in milliseconds.
+struct HOROPTER_API FrontendTimings {
+  double prefilter = 0, match = 0, cleanup = 0, median = 0, mask = 0;
+  double total() const { return prefilter + match + cleanup + median + mask; }
+};
+
+class HOROPTER_API StereoFrontend {
+ public:
+  // Validates the parameters and the thread count, 1..256 (throws horopter::Error).
+  StereoFrontend(const StereoParams& stereo, const MedianParams& median,
+                 const Backend& backend = scalarBackend(), int threads = 1);
+  ~StereoFrontend();
+  StereoFrontend(StereoFrontend&&) noexcept;
+  StereoFrontend& operator=(StereoFrontend&&) noexcept;
+
+  // Rectified U8C1 pair in, final disparity (S16C1, 1/16 px) out: prefilter,
+  // matching, left-right check, speckles, then the median when enabled.
+  const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right);
+
+  // Horopter mask of the last disparity: one threshold per column (1/16 px,
+  // see geometry.hpp). When `image` (U8C1 or U8C3) is given, segmented()
+  // receives it with the outside of the zone zeroed.
+  void computeMask(std::span<const std::int16_t> thresholds, const ConstImageView& image = {});
+
+  const Image& disparity() const;                           // final (after median)
+  const Image& cleanedDisparity() const { return clean_; }  // before the median
+  const Image& mask() const { return mask_; }
+  const Image& segmented() const { return segmented_; }
+  const FrontendTimings& timings() const { return timings_; }
+  const StereoParams& stereoParams() const { return stereo_; }
+  const MedianParams& medianParams() const { return median_; }
+  const Backend& backend() const { return *backend_; }
+  int threads() const;
+
+ private:
+  void allocate(int width, int height);
+  // Runs fn over one stripe of rows per thread of the pool.
+  void forEachStripe(int height, const std::function<void(RowRange)>& fn);
+
+  StereoParams stereo_;
+  MedianParams median_;
+  const Backend* backend_;
+  std::unique_ptr<ThreadPool> pool_;
+  Image leftFiltered_, rightFiltered_, texture_;
+  Image clean_, winnerRight_, median_out_;
+  Image mask_, segmented_;
+  FrontendTimings timings_;
+};
+
+}  // namespace horopter
