@@ -49,11 +49,17 @@ SchedulerOptions schedulerOptions(const PipelineOptions& o) {
 }  // namespace
 
 // The scheduler only runs frames that a FrameSource made, so each is a Frame.
-void Stage::run(ScheduledFrame& frame) { process(static_cast<Frame&>(frame)); }
+void Stage::run(ScheduledFrame& frame) {
+  process(static_cast<Frame&>(frame));
+}
 
-std::unique_ptr<ScheduledFrame> FrameSource::newFrame() { return std::make_unique<Frame>(); }
+std::unique_ptr<ScheduledFrame> FrameSource::newFrame() {
+  return std::make_unique<Frame>();
+}
 
-bool FrameSource::fill(ScheduledFrame& frame) { return next(static_cast<Frame&>(frame)); }
+bool FrameSource::fill(ScheduledFrame& frame) {
+  return next(static_cast<Frame&>(frame));
+}
 
 std::unique_ptr<Stage> makeStage(std::string name, std::function<void(Frame&)> fn) {
   if (name.empty()) throw Error("a pipeline stage needs a name");
@@ -74,6 +80,8 @@ Pipeline& Pipeline::add(std::unique_ptr<Stage> stage) {
   return *this;
 }
 
-RunSummary Pipeline::run(FrameSource& source) { return scheduler_.run(source); }
+RunSummary Pipeline::run(FrameSource& source) {
+  return scheduler_.run(source);
+}
 
 }  // namespace horopter

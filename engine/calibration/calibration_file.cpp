@@ -4,6 +4,7 @@
 #include <opencv2/core/persistence.hpp>
 #include <string>
 
+#include "file_output.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 
@@ -90,15 +91,21 @@ class Reader {
 }  // namespace
 
 void saveStereoCalibration(const StereoCalibration& c, const std::string& path) {
+  // Written in memory (the format from the name, as OpenCV picks it for a
+  // file), then to the file with every write checked: cv::FileStorage
+  // reports no failed write.
+  if (path.size() >= 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
+    throw Error("cannot write the calibration file '" + path +
+                "': compressed files are not written; use a name ending in .yml, .yaml or .xml");
   cv::FileStorage fs;
   try {
-    fs.open(path, cv::FileStorage::WRITE);
+    fs.open(path, cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
-    throw Error("cannot write calibration file '" + path + "': " + e.msg);
+    throw Error("cannot write the calibration file '" + path + "': " + e.msg);
   }
   if (!fs.isOpened())
-    throw Error("cannot write calibration file '" + path +
-                "': check the folder exists and the name ends in .yml, .yaml or .xml");
+    throw Error("cannot write the calibration file '" + path +
+                "': use a name ending in .yml, .yaml or .xml");
   fs << "horopter_calibration_version" << kFormatVersion;
   fs << "image_width" << c.imageSize.width << "image_height" << c.imageSize.height;
   fs << "board_width" << c.board.innerCorners.width << "board_height" << c.board.innerCorners.height
@@ -126,6 +133,7 @@ void saveStereoCalibration(const StereoCalibration& c, const std::string& path) 
   for (const std::string& s : c.skipped)
     fs << s;
   fs << "]";
+  detail::writeFile(path, fs.releaseAndGetString(), "calibration file");
 }
 
 StereoCalibration loadStereoCalibration(const std::string& path) {

@@ -14,6 +14,7 @@
 #include "horopter/hardware/rmp_base.hpp"
 #include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_rmp.hpp"
+#include "json_text.hpp"
 
 namespace horopter::cli {
 
@@ -45,20 +46,27 @@ const char* kBaseHelp =
 
 void print(const std::optional<hw::Odometry>& o, const hw::BaseHealth& h, double t, bool estop,
            bool json) {
+  if (json) {
+    using detail::Json;
+    using detail::jsonNumber;
+    const Json line = o ? Json{{"t", jsonNumber(t, 2)},
+                               {"x", jsonNumber(o->x, 4)},
+                               {"y", jsonNumber(o->y, 4)},
+                               {"heading", jsonNumber(o->heading, 4)},
+                               {"linear", jsonNumber(o->velocity.linear, 3)},
+                               {"angular", jsonNumber(o->velocity.angular, 3)},
+                               {"sent_linear", jsonNumber(h.lastSent.linear, 3)},
+                               {"sent_angular", jsonNumber(h.lastSent.angular, 3)},
+                               {"estop", estop},
+                               {"status_fresh", h.statusFresh}}
+                        : Json{{"t", jsonNumber(t, 2)}, {"odometry", nullptr}, {"estop", estop}};
+    std::cout << detail::jsonText(line) << std::endl;
+    return;
+  }
   char line[320];
   if (!o) {
-    std::snprintf(line, sizeof line,
-                  json ? "{\"t\": %.2f, \"odometry\": null, \"estop\": %s}"
-                       : "t=%5.2fs  no status from the base yet  estop=%s",
-                  t, estop ? "true" : "false");
-  } else if (json) {
-    std::snprintf(
-        line, sizeof line,
-        "{\"t\": %.2f, \"x\": %.4f, \"y\": %.4f, \"heading\": %.4f, \"linear\": %.3f, "
-        "\"angular\": %.3f, \"sent_linear\": %.3f, \"sent_angular\": %.3f, \"estop\": %s, "
-        "\"status_fresh\": %s}",
-        t, o->x, o->y, o->heading, o->velocity.linear, o->velocity.angular, h.lastSent.linear,
-        h.lastSent.angular, estop ? "true" : "false", h.statusFresh ? "true" : "false");
+    std::snprintf(line, sizeof line, "t=%5.2fs  no status from the base yet  estop=%s", t,
+                  estop ? "true" : "false");
   } else {
     std::snprintf(line, sizeof line,
                   "t=%5.2fs  x=%+.3f m  y=%+.3f m  heading=%+.3f rad  v=%+.3f m/s  w=%+.3f rad/s  "

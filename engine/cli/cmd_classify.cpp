@@ -2,7 +2,6 @@
 // track or for synthetic labelled sequences (scored against their labels).
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include "commands.hpp"
@@ -13,6 +12,8 @@
 #include "horopter/eval/tracking_eval.hpp"
 #include "horopter/movement/body_track_file.hpp"
 #include "horopter/movement/movement.hpp"
+#include "json_text.hpp"
+#include "report_format.hpp"
 
 namespace horopter::cli {
 
@@ -39,16 +40,11 @@ void parseSeedRange(const std::string& text, std::uint64_t& first, int& count) {
     throw Error("--synthetic SEED:COUNT needs COUNT within 1..100000");
 }
 
-std::string posteriorJson(const MovementPosterior& p) {
-  std::ostringstream o;
-  o << '{';
-  for (int m = 0; m < kMovementClassCount; ++m) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%s\"%s\": %.4f", m ? ", " : "",
-                  movementClassName(static_cast<MovementClass>(m)), p[m]);
-    o << buf;
-  }
-  return o.str() + '}';
+detail::Json posteriorJson(const MovementPosterior& p) {
+  detail::Json o = detail::Json::object();
+  for (int m = 0; m < kMovementClassCount; ++m)
+    o[movementClassName(static_cast<MovementClass>(m))] = detail::jsonNumber(p[m], 4);
+  return o;
 }
 
 // One rendered trial through the whole pipeline, decisions printed as the
@@ -194,7 +190,7 @@ int runClassify(Args& args) {
 
   const auto model = loadOrTrainMovementModel(modelPath);
   MovementScore score;
-  std::ostringstream decisionsJson;
+  detail::Json decisionsJson = detail::Json::array();
   int decisions = 0;
   for (const LabelledSequence& seq : inputs) {
     const std::vector<MovementState> states = classifyTrack(seq.samples, model);
@@ -206,14 +202,13 @@ int runClassify(Args& args) {
       if (!st.decision) continue;
       const int d = static_cast<int>(*st.decision);
       if (json) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf,
-                      "%s{\"sequence\": %llu, \"frame\": %lld, \"time_s\": %.3f, \"movement\": "
-                      "\"%s\", \"action\": \"%s\", \"posterior\": ",
-                      decisions ? ", " : "", static_cast<unsigned long long>(seq.seed),
-                      static_cast<long long>(s.frame), s.timeS, movementClassName(*st.decision),
-                      st.actionStarted ? robotActionName(st.action) : "ignored");
-        decisionsJson << buf << posteriorJson(st.posterior) << '}';
+        decisionsJson.push_back(
+            detail::Json{{"sequence", seq.seed},
+                         {"frame", s.frame},
+                         {"time_s", detail::jsonNumber(s.timeS, 3)},
+                         {"movement", movementClassName(*st.decision)},
+                         {"action", st.actionStarted ? robotActionName(st.action) : "ignored"},
+                         {"posterior", posteriorJson(st.posterior)}});
       } else if (!quiet) {
         std::printf("%sframe %5lld  t %7.2f s  %-14s p %.3f  -> %s%s\n",
                     labelled ? ("seed " + std::to_string(seq.seed) + "  ").c_str() : "",
@@ -229,13 +224,13 @@ int runClassify(Args& args) {
     if (labelled) score.add(summariseSegments(scored, grace));
   }
   if (json) {
-    std::printf("{\"decisions\": [%s]", decisionsJson.str().c_str());
+    detail::Json out{{"decisions", std::move(decisionsJson)}};
     if (labelled)
-      std::printf(
-          ", \"score\": {\"movements\": %d, \"correct\": %d, \"classification_rate\": "
-          "%.2f, \"spurious\": %d}",
-          score.segments, score.correct, score.classificationPct(), score.spurious);
-    std::printf("}\n");
+      out["score"] = {{"movements", score.segments},
+                      {"correct", score.correct},
+                      {"classification_rate", detail::jsonNumber(score.classificationPct(), 2)},
+                      {"spurious", score.spurious}};
+    writeJsonLine(detail::jsonText(out));
     return 0;
   }
   std::printf("%d decisions over %zu sequence(s)\n", decisions, inputs.size());

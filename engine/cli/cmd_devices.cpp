@@ -1,26 +1,13 @@
 // `horopter devices`: the CPU, the backends and the OpenCL devices here.
-#include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "commands.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/devices.hpp"
+#include "json_text.hpp"
+#include "report_format.hpp"
 
 namespace horopter::cli {
-
-namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out + "\"";
-}
-
-}  // namespace
 
 int runDevices(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
@@ -39,33 +26,33 @@ int runDevices(Args& args) {
   const Backend& chosen = findBackend("auto");
 
   if (asJson) {
-    std::ostringstream o;
-    o << "{\"cpu\": {\"model\": " << quoted(cpu.model) << ", \"threads\": " << cpu.hardwareThreads
-      << ", \"features\": [";
-    for (std::size_t i = 0; i < cpu.features.size(); ++i)
-      o << (i ? ", " : "") << quoted(cpu.features[i]);
-    o << "]}, \"backends\": [";
-    bool first = true;
-    for (const Backend* b : registeredBackends()) {
-      o << (first ? "" : ", ") << "{\"name\": " << quoted(b->name)
-        << ", \"available\": " << (b->available ? "true" : "false")
-        << ", \"description\": " << quoted(b->description)
-        << ", \"reason\": " << quoted(b->unavailableReason) << "}";
-      first = false;
-    }
-    o << "], \"auto\": " << quoted(chosen.name)
-      << ", \"opencl\": {\"built\": " << (cl.built ? "true" : "false")
-      << ", \"error\": " << quoted(cl.error) << ", \"devices\": [";
+    using detail::Json;
+    Json backends = Json::array();
+    for (const Backend* b : registeredBackends())
+      backends.push_back(Json{{"name", b->name},
+                              {"available", b->available},
+                              {"description", b->description},
+                              {"reason", b->unavailableReason}});
+    Json devices = Json::array();
     for (std::size_t i = 0; i < cl.devices.size(); ++i) {
       const auto& d = cl.devices[i];
-      o << (i ? ", " : "") << "{\"backend\": \"opencl:" << i << "\", \"platform\": " << d.platform
-        << ", \"device\": " << d.device << ", \"platform_name\": " << quoted(d.platformName)
-        << ", \"name\": " << quoted(d.deviceName) << ", \"type\": " << quoted(d.type)
-        << ", \"version\": " << quoted(d.version) << ", \"compute_units\": " << d.computeUnits
-        << ", \"global_mem_bytes\": " << d.globalMemBytes << "}";
+      devices.push_back(Json{{"backend", "opencl:" + std::to_string(i)},
+                             {"platform", d.platform},
+                             {"device", d.device},
+                             {"platform_name", d.platformName},
+                             {"name", d.deviceName},
+                             {"type", d.type},
+                             {"version", d.version},
+                             {"compute_units", d.computeUnits},
+                             {"global_mem_bytes", d.globalMemBytes}});
     }
-    o << "]}}\n";
-    std::cout << o.str();
+    const Json o{
+        {"cpu",
+         {{"model", cpu.model}, {"threads", cpu.hardwareThreads}, {"features", cpu.features}}},
+        {"backends", std::move(backends)},
+        {"auto", chosen.name},
+        {"opencl", {{"built", cl.built}, {"error", cl.error}, {"devices", std::move(devices)}}}};
+    writeJsonLine(detail::jsonText(o));
     return 0;
   }
   std::cout << "CPU: " << cpu.model << " (" << cpu.hardwareThreads << " threads)\n  features:";

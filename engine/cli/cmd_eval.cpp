@@ -7,18 +7,18 @@
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/stereo_eval.hpp"
+#include "json_text.hpp"
+#include "report_format.hpp"
 
 namespace horopter::cli {
 
 namespace {
 
-std::string json(const StereoScores& s) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "{\"bad1\": %.4f, \"bad2\": %.4f, \"avgerr\": %.4f, \"density\": %.4f, "
-                "\"ms\": %.3f, \"backend\": \"%s\"}",
-                s.bad1, s.bad2, s.avgerr, s.density, s.ms, s.backend.c_str());
-  return buf;
+detail::Json json(const StereoScores& s) {
+  using detail::jsonNumber;
+  return detail::Json{{"bad1", jsonNumber(s.bad1, 4)},     {"bad2", jsonNumber(s.bad2, 4)},
+                      {"avgerr", jsonNumber(s.avgerr, 4)}, {"density", jsonNumber(s.density, 4)},
+                      {"ms", jsonNumber(s.ms, 3)},         {"backend", s.backend}};
 }
 
 void printRow(const char* who, const StereoScores& s) {
@@ -87,9 +87,9 @@ int runEvalStereo(Args& args) {
   }
 
   if (asJson) {
-    std::printf("{\"horopter\": %s", json(ours).c_str());
-    if (theirs) std::printf(", \"opencv\": %s", json(*theirs).c_str());
-    std::printf("}\n");
+    detail::Json out{{"horopter", json(ours)}};
+    if (theirs) out["opencv"] = json(*theirs);
+    writeJsonLine(detail::jsonText(out));
   } else {
     std::printf("%-10s %-16s %8s %8s %8s %8s %10s\n", "", "backend", "bad1%", "bad2%", "avgerr",
                 "density%", "ms/frame");

@@ -12,6 +12,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/eval/interaction_eval.hpp"
 #include "horopter/eval/movement_training.hpp"
+#include "json_text.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
@@ -196,7 +197,7 @@ int runEvalInteraction(Args& args) {
                    {"height", options.trial.height}};
     if (runFull) out["full"] = eval::interactionScopeJson(full);
     if (runRoi) out["roi"] = eval::interactionScopeJson(roi);
-    writeJsonLine(out.dump());
+    writeJsonLine(detail::jsonText(out));
   } else {
     std::printf("%d trials (seeds %d-%d, %s), %d frames each at %dx%d\n", options.trials, seed,
                 seed + options.trials - 1, eval::seedUseName(seedUse), options.trial.frames,

@@ -6,12 +6,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <utility>
 #include <vector>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "commands.hpp"
@@ -20,6 +18,8 @@
 #include "eval/seed_ranges.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/tracking_eval.hpp"
+#include "io/disparity_images.hpp"
+#include "json_text.hpp"
 #include "report_format.hpp"
 #include "run_annotation.hpp"
 
@@ -143,43 +143,52 @@ std::vector<const TrialResult*> worstTrials(const std::vector<TrackingTrial>& tr
   return order;
 }
 
-std::string trialJson(const TrialResult& r) {
-  std::ostringstream o;
-  o << "{\"seed\":" << r.seed << ",\"godfather_frames\":" << r.godfatherFrames
-    << ",\"lost_frames\":" << r.lostFrames << ",\"tracker_loss\":" << r.trackerLoss()
-    << ",\"head_lost\":" << r.head.lost << ",\"left_hand_lost\":" << r.leftHand.lost
-    << ",\"right_hand_lost\":" << r.rightHand.lost << ",\"detections\":" << r.detections
-    << ",\"false_detections\":" << r.falseDetections << "}";
-  return o.str();
+using detail::Json;
+using detail::jsonNumber;
+
+Json trialJson(const TrialResult& r) {
+  return Json{{"seed", r.seed},
+              {"godfather_frames", r.godfatherFrames},
+              {"lost_frames", r.lostFrames},
+              {"tracker_loss", jsonNumber(r.trackerLoss())},
+              {"head_lost", r.head.lost},
+              {"left_hand_lost", r.leftHand.lost},
+              {"right_hand_lost", r.rightHand.lost},
+              {"detections", r.detections},
+              {"false_detections", r.falseDetections}};
 }
 
-std::string scoreJson(const ScopeScore& s, const std::vector<TrackingTrial>& trials) {
-  std::ostringstream o;
-  o.precision(17);
+double lossRate(const PartScore& p) {
+  return p.visible ? static_cast<double>(p.lost) / static_cast<double>(p.visible) : 0;
+}
+
+Json scoreJson(const ScopeScore& s, const std::vector<TrackingTrial>& trials) {
   const eval::RatioEstimate ci = lossInterval(trials);
-  o << "{\"scope\":\"" << detectionScopeName(s.scope) << "\",\"trials\":" << s.trials
-    << ",\"frames\":" << s.frames << ",\"godfather_frames\":" << s.godfatherFrames
-    << ",\"lost_frames\":" << s.lostFrames << ",\"tracker_loss\":" << s.trackerLoss()
-    << ",\"head_loss\":" << (s.head.visible ? double(s.head.lost) / s.head.visible : 0)
-    << ",\"left_hand_loss\":"
-    << (s.leftHand.visible ? double(s.leftHand.lost) / s.leftHand.visible : 0)
-    << ",\"right_hand_loss\":"
-    << (s.rightHand.visible ? double(s.rightHand.lost) / s.rightHand.visible : 0)
-    << ",\"detections\":" << s.detections << ",\"false_detections\":" << s.falseDetections
-    << ",\"false_positive_rate\":" << s.falsePositiveRate() << ",\"detection_ms\":" << s.detectionMs
-    << ",\"tracking_ms\":" << s.trackingMs << ",\"vision_ms\":" << s.visionMs
-    << ",\"fps\":" << s.fps() << ",\"tracker_loss_ci95\":[" << ci.low << "," << ci.high << "]"
-    << ",\"worst_trials\":[";
-  const char* sep = "";
+  Json worst = Json::array();
   for (const TrialResult* r : worstTrials(trials, 5))
-    o << std::exchange(sep, ",") << "{\"seed\":" << r->seed
-      << ",\"tracker_loss\":" << r->trackerLoss() << "}";
-  o << "],\"per_trial\":[";
-  sep = "";
+    worst.push_back(Json{{"seed", r->seed}, {"tracker_loss", jsonNumber(r->trackerLoss())}});
+  Json perTrial = Json::array();
   for (const TrackingTrial& t : trials)
-    o << std::exchange(sep, ",") << trialJson(t.result);
-  o << "]}";
-  return o.str();
+    perTrial.push_back(trialJson(t.result));
+  return Json{{"scope", detectionScopeName(s.scope)},
+              {"trials", s.trials},
+              {"frames", s.frames},
+              {"godfather_frames", s.godfatherFrames},
+              {"lost_frames", s.lostFrames},
+              {"tracker_loss", jsonNumber(s.trackerLoss())},
+              {"head_loss", jsonNumber(lossRate(s.head))},
+              {"left_hand_loss", jsonNumber(lossRate(s.leftHand))},
+              {"right_hand_loss", jsonNumber(lossRate(s.rightHand))},
+              {"detections", s.detections},
+              {"false_detections", s.falseDetections},
+              {"false_positive_rate", jsonNumber(s.falsePositiveRate())},
+              {"detection_ms", jsonNumber(s.detectionMs)},
+              {"tracking_ms", jsonNumber(s.trackingMs)},
+              {"vision_ms", jsonNumber(s.visionMs)},
+              {"fps", jsonNumber(s.fps())},
+              {"tracker_loss_ci95", Json::array({jsonNumber(ci.low), jsonNumber(ci.high)})},
+              {"worst_trials", std::move(worst)},
+              {"per_trial", std::move(perTrial)}};
 }
 
 double pct(std::int64_t lost, std::int64_t of) {
@@ -288,7 +297,7 @@ int runEvalTracking(Args& args) {
           const std::string path = stills + "/seed" + std::to_string(trialSeed) + "_" +
                                    (scope == DetectionScope::HoropterRegion ? "region" : "full") +
                                    "_" + std::to_string(t.frame.index) + ".png";
-          if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
+          writeImageFile(path, view, "still");
         };
       }
       TrialFrameCallback onFrame = [&](const TrialFrame& t) {
@@ -329,16 +338,14 @@ int runEvalTracking(Args& args) {
 
   const bool better = scores.size() == 2 && scores[0].trackerLoss() < scores[1].trackerLoss();
   if (json) {
-    std::ostringstream out;
-    out << "{\"trials\":" << trials << ",\"seed\":" << seed << ",\"seed_use\":\""
-        << eval::seedUseName(seedUse) << "\",\"frames\":" << base.frames
-        << ",\"width\":" << base.width << ",\"height\":" << base.height << ",\"scopes\":[";
+    Json out{
+        {"trials", trials},       {"seed", seed},        {"seed_use", eval::seedUseName(seedUse)},
+        {"frames", base.frames},  {"width", base.width}, {"height", base.height},
+        {"scopes", Json::array()}};
     for (std::size_t k = 0; k < scores.size(); ++k)
-      out << (k ? "," : "") << scoreJson(scores[k], perTrial[k]);
-    out << "]";
-    if (scores.size() == 2) out << ",\"region_better\":" << (better ? "true" : "false");
-    out << "}";
-    writeJsonLine(out.str());
+      out["scopes"].push_back(scoreJson(scores[k], perTrial[k]));
+    if (scores.size() == 2) out["region_better"] = better;
+    writeJsonLine(detail::jsonText(out));
   } else {
     std::printf("%d trials (seeds %lld-%lld, %s), %d frames each at %dx%d, head control %s\n",
                 trials, seed, seed + trials - 1, eval::seedUseName(seedUse), base.frames,

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <iostream>
 #include <numbers>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 
 #include "commands.hpp"
@@ -14,6 +13,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 #include "horopter/vision/geometry.hpp"
+#include "io/disparity_images.hpp"
 
 namespace horopter::cli {
 
@@ -127,7 +127,7 @@ int runGeometry(Args& args) {
 
   const std::filesystem::path parent = std::filesystem::path(out).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
-  if (!cv::imwrite(out, drawZoneTopDown(g, width, c))) throw Error("cannot write '" + out + "'");
+  writeImageFile(out, drawZoneTopDown(g, width, c), "figure");
   std::printf("wrote %s\n", out.c_str());
   return 0;
 }

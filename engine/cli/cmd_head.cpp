@@ -17,6 +17,7 @@
 #include "horopter/hardware/ptu_head.hpp"
 #include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_devices.hpp"
+#include "json_text.hpp"
 
 namespace horopter::cli {
 
@@ -65,14 +66,18 @@ std::vector<int> parseIds(const std::string& text) {
 }
 
 void print(const hw::HeadMeasurement& m, double t, bool json) {
+  if (json) {
+    using detail::jsonNumber;
+    std::cout << detail::jsonText({{"t", jsonNumber(t, 2)},
+                                   {"pan", jsonNumber(m.angles.pan, 4)},
+                                   {"tilt", jsonNumber(m.angles.tilt, 4)},
+                                   {"vergence", jsonNumber(m.angles.vergence, 4)}})
+              << std::endl;
+    return;
+  }
   char line[200];
-  if (json)
-    std::snprintf(line, sizeof line,
-                  "{\"t\": %.2f, \"pan\": %.4f, \"tilt\": %.4f, \"vergence\": %.4f}", t,
-                  m.angles.pan, m.angles.tilt, m.angles.vergence);
-  else
-    std::snprintf(line, sizeof line, "t=%5.2fs  pan=%+.4f  tilt=%+.4f  vergence=%+.4f rad", t,
-                  m.angles.pan, m.angles.tilt, m.angles.vergence);
+  std::snprintf(line, sizeof line, "t=%5.2fs  pan=%+.4f  tilt=%+.4f  vergence=%+.4f rad", t,
+                m.angles.pan, m.angles.tilt, m.angles.vergence);
   std::cout << line << std::endl;
 }
 

@@ -8,7 +8,6 @@
 #include <iostream>
 #include <map>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
@@ -17,6 +16,8 @@
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencl_frontend.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "json_text.hpp"
+#include "report_format.hpp"
 
 namespace horopter::cli {
 
@@ -162,15 +163,6 @@ BackendProfile profileOpenCl(const std::string& name, const std::vector<Pair>& p
   return p;
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out + "\"";
-}
-
 void printTable(const BackendProfile& p) {
   std::printf("\nbackend %s (%s)%s%s\n", p.name.c_str(), p.device.c_str(),
               p.note.empty() ? "" : "\n  note: ", p.note.c_str());
@@ -185,26 +177,32 @@ void printTable(const BackendProfile& p) {
 
 void printJson(const std::vector<BackendProfile>& profiles, const std::string& input, int width,
                int height, int frames) {
-  std::ostringstream o;
-  o << "{\"input\": " << quoted(input) << ", \"width\": " << width << ", \"height\": " << height
-    << ", \"frames\": " << frames << ", \"backends\": [";
-  for (std::size_t b = 0; b < profiles.size(); ++b) {
-    const BackendProfile& p = profiles[b];
-    o << (b ? ", " : "") << "{\"backend\": " << quoted(p.name)
-      << ", \"device\": " << quoted(p.device) << ", \"note\": " << quoted(p.note)
-      << ", \"wall_ms\": {\"mean\": " << mean(p.wallMs) << ", \"median\": " << median(p.wallMs)
-      << ", \"min\": " << minimum(p.wallMs) << "}, \"stages\": [";
-    for (std::size_t i = 0; i < p.stages.size(); ++i) {
-      const StageStats& s = p.stages[i];
-      o << (i ? ", " : "") << "{\"stage\": " << quoted(s.name)
-        << ", \"where\": " << (s.onDevice ? "\"device\"" : "\"cpu\"")
-        << ", \"mean_ms\": " << mean(s.ms) << ", \"median_ms\": " << median(s.ms)
-        << ", \"min_ms\": " << minimum(s.ms) << "}";
-    }
-    o << "]}";
+  using detail::Json;
+  using detail::jsonNumber;
+  Json backends = Json::array();
+  for (const BackendProfile& p : profiles) {
+    Json stages = Json::array();
+    for (const StageStats& s : p.stages)
+      stages.push_back(Json{{"stage", s.name},
+                            {"where", s.onDevice ? "device" : "cpu"},
+                            {"mean_ms", jsonNumber(mean(s.ms))},
+                            {"median_ms", jsonNumber(median(s.ms))},
+                            {"min_ms", jsonNumber(minimum(s.ms))}});
+    backends.push_back(Json{{"backend", p.name},
+                            {"device", p.device},
+                            {"note", p.note},
+                            {"wall_ms",
+                             {{"mean", jsonNumber(mean(p.wallMs))},
+                              {"median", jsonNumber(median(p.wallMs))},
+                              {"min", jsonNumber(minimum(p.wallMs))}}},
+                            {"stages", std::move(stages)}});
   }
-  o << "]}\n";
-  std::cout << o.str();
+  const Json o{{"input", input},
+               {"width", width},
+               {"height", height},
+               {"frames", frames},
+               {"backends", std::move(backends)}};
+  writeJsonLine(detail::jsonText(o));
 }
 
 cv::Size parseSize(const std::string& text) {

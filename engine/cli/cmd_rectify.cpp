@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
+#include "io/disparity_images.hpp"
 
 namespace horopter::cli {
 
@@ -64,7 +65,7 @@ int runRectify(Args& args) {
       cv::line(sideBySide, {0, y}, {sideBySide.cols - 1, y}, cv::Scalar(0, 255, 0), 1);
     const std::string stem = std::filesystem::path(p.left).stem().string();
     const std::string out = outDir + "/" + stem + "_rectified.png";
-    if (!cv::imwrite(out, sideBySide)) throw Error("cannot write '" + out + "'");
+    writeImageFile(out, sideBySide, "rectified pair");
     std::cout << "wrote " << out << "  (" << p.name << ")\n";
   }
   return 0;

@@ -8,16 +8,14 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <opencv2/highgui.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <thread>
 
-#include <nlohmann/json.hpp>
 #include "commands.hpp"
 
+#include "file_output.hpp"
 #include "horopter/app/pipeline_builder.hpp"
 #include "horopter/app/robot_stage.hpp"
 #include "horopter/core/error.hpp"
@@ -25,6 +23,8 @@
 #include "horopter/eval/movement_training.hpp"
 #include "horopter/hardware/sim_robot.hpp"
 #include "horopter/sim/synthetic_source.hpp"
+#include "io/disparity_images.hpp"
+#include "json_text.hpp"
 #include "run_annotation.hpp"
 
 namespace horopter::cli {
@@ -215,9 +215,20 @@ class Output {
     if (tty_ && shown_) std::cerr << "\n";
   }
 
-  // Writes the last frame's still when the source's length was not known.
+  // Writes the last frame's still when the source's length was not known,
+  // and closes the video.
   void finish() {
     if (!lastView_.empty()) writeStill(lastView_, lastIndex_);
+    if (writer_.isOpened()) {
+      writer_.release();
+      // cv::VideoWriter reports no write error: a missing or empty file at
+      // least is caught (a disk that filled up mid-video is not).
+      const std::string path = job_.outDir + "/run.avi";
+      std::error_code ec;
+      const auto size = std::filesystem::file_size(path, ec);
+      if (ec) detail::throwWriteError("video", path, ec.value());
+      if (size == 0) detail::throwWriteError("video", path, 0);
+    }
   }
 
   void operator()(const Frame& f) {
@@ -247,8 +258,7 @@ class Output {
 
  private:
   void writeStill(const cv::Mat& view, std::int64_t index) {
-    const std::string path = job_.outDir + "/still_" + std::to_string(index) + ".png";
-    if (!cv::imwrite(path, view)) throw Error("cannot write '" + path + "'");
+    writeImageFile(job_.outDir + "/still_" + std::to_string(index) + ".png", view, "still");
     lastView_.release();
   }
 
@@ -377,10 +387,10 @@ int runPipeline(Args& args) {
 
   // The frames' digest beside the summary: the same configuration gives the
   // same digest from Python and the C API (tests/app/pipeline_parity_test).
-  nlohmann::ordered_json summaryObject = nlohmann::ordered_json::parse(summaryJson(summary));
+  detail::Json summaryObject = detail::Json::parse(summaryJson(summary));
   summaryObject["frames_digest"] = digestText(digest);
-  const std::string json = summaryObject.dump();
-  std::ofstream(job.outDir + "/summary.json") << json << "\n";
+  const std::string json = detail::jsonText(summaryObject);
+  detail::writeFile(job.outDir + "/summary.json", json + "\n", "run summary");
   if (!job.trace.empty()) writeChromeTrace(summary, job.trace);
   if (job.json)
     std::printf("%s\n", json.c_str());

@@ -1,7 +1,9 @@
 // See report_format.hpp.
 #include "report_format.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 #include "horopter/core/error.hpp"
 
@@ -25,9 +27,11 @@ std::string reportability(eval::SeedUse use, int trials) {
 }
 
 void writeJsonLine(const std::string& text) {
+  errno = 0;
   if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() ||
       std::fputc('\n', stdout) == EOF || std::fflush(stdout) != 0)
-    throw Error("cannot write the JSON report to standard output");
+    throw Error(std::string("cannot write the JSON report to standard output") +
+                (errno ? std::string(": ") + std::strerror(errno) : std::string()));
 }
 
 }  // namespace horopter::cli

@@ -4,24 +4,30 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <vector>
+#include "file_output.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/opencv.hpp"
 
 namespace horopter {
 
-namespace {
-
-void writeImage(const std::string& path, const cv::Mat& image) {
+void writeImageFile(const std::string& path, const cv::Mat& image, const std::string& what) {
+  // Encoded in memory, then written checked: cv::imwrite does not report a
+  // write that fails in its buffers (a full disk).
+  const std::string extension = std::filesystem::path(path).extension().string();
+  std::vector<std::uint8_t> bytes;
   bool ok = false;
   try {
-    ok = cv::imwrite(path, image);
+    ok = !extension.empty() && cv::imencode(extension, image, bytes);
   } catch (const cv::Exception& e) {
-    throw Error("could not write '" + path + "': " + e.what());
+    throw Error("cannot write the " + what + " '" + path + "': " + e.what());
   }
-  if (!ok) throw Error("could not write '" + path + "': check the folder is writable");
+  if (!ok)
+    throw Error("cannot write the " + what + " '" + path +
+                "': OpenCV cannot encode it (use a name ending in .png or .jpg)");
+  detail::writeFile(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), what);
 }
-
-}  // namespace
 
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params) {
   const std::int16_t invalid = invalidDisparity(params);
@@ -53,7 +59,7 @@ void writeDisparityPng(const std::string& path, const ConstImageView& disparity,
     for (int x = 0; x < disparity.width; ++x)
       o[x] = (d[x] == invalid || d[x] <= 0) ? 0 : static_cast<std::uint16_t>(d[x]);
   }
-  writeImage(path, out);
+  writeImageFile(path, out, "disparity image");
 }
 
 void writeFrontendOutputs(const std::string& dir, const StereoFrontend& frontend) {
@@ -63,10 +69,10 @@ void writeFrontendOutputs(const std::string& dir, const StereoFrontend& frontend
   const auto& p = frontend.stereoParams();
   const auto disparity = frontend.disparity().view();
   writeDisparityPng(dir + "/disparity.png", disparity, invalidDisparity(p));
-  writeImage(dir + "/disparity_color.png", colorizeDisparity(disparity, p));
-  if (!frontend.mask().empty()) writeImage(dir + "/mask.png", matOf(frontend.mask()));
+  writeImageFile(dir + "/disparity_color.png", colorizeDisparity(disparity, p), "image");
+  if (!frontend.mask().empty()) writeImageFile(dir + "/mask.png", matOf(frontend.mask()), "image");
   if (!frontend.segmented().empty())
-    writeImage(dir + "/segmented.png", matOf(frontend.segmented()));
+    writeImageFile(dir + "/segmented.png", matOf(frontend.segmented()), "image");
 }
 
 }  // namespace horopter

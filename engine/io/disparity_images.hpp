@@ -13,6 +13,12 @@ namespace horopter {
 // invalid = black. The colour scale spans the search range of `params`.
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params);
 
+// Writes `image` to `path` in the format its extension names (.png, .jpg, ...),
+// every byte checked. Throws horopter::Error naming `what`, the file and the
+// reason (a missing folder, a full disk, an extension OpenCV cannot encode).
+void writeImageFile(const std::string& path, const cv::Mat& image,
+                    const std::string& what = "image");
+
 // 16-bit PNG in 1/16 px as OpenCV's maps; invalid pixels (and disparities
 // <= 0) are written as 0, the usual "unknown".
 void writeDisparityPng(const std::string& path, const ConstImageView& disparity,

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "file_output.hpp"
 #include "horopter/core/error.hpp"
 
 namespace horopter {
@@ -33,8 +34,7 @@ void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samp
   const auto parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write the track file '" + path + "'");
+  std::ostringstream out;
   out << kMagic << '\n' << header() << (truth.empty() ? "" : ",truth") << '\n';
   std::size_t index = 0;
   char buf[160];
@@ -51,7 +51,7 @@ void writeBodyTrack(const std::string& path, const std::vector<BodySample>& samp
     ++index;
     out << '\n';
   }
-  if (!out) throw Error("writing the track file '" + path + "' failed");
+  detail::writeFile(path, out.str(), "track file");
 }
 
 std::vector<BodySample> readBodyTrack(const std::string& path, std::vector<MovementClass>* truth) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "file_output.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/movement/movement_classifier.hpp"
 
@@ -180,11 +181,7 @@ void MovementModel::save(const std::string& path) const {
   const auto parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error("cannot write the movement model to '" + path + "'");
-  out << serialize();
-  out.close();
-  if (!out) throw Error("writing the movement model to '" + path + "' failed");
+  detail::writeFile(path, serialize(), "movement model");
 }
 
 MovementModel MovementModel::load(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/sim_robot.hpp"
 
@@ -46,13 +47,35 @@ TEST(SimulatedRobot, HeadFollowsAndBaseMovesWithTelemetry) {
 TEST(TelemetryLog, JsonHasEveryField) {
   TelemetrySample s;
   s.t = 1.5;
-  s.headCommanded = HeadAngles{0.1, 0.2, 0.0};
+  s.headCommanded = HeadAngles{0.1, 0.2, std::nan("")};
   s.emergencyStop = true;
-  s.base.lastFault = "say \"hi\"";
-  const std::string j = TelemetryLog::toJson(s);
-  for (const char* key : {"\"t\": 1.5", "\"head_commanded\": {\"pan\": 0.1",
-                          "\"head_measured\": null", "\"base_sent\"", "\"odometry\": null",
-                          "\"estop\": true", "\"base_last\": \"say \\\"hi\\\"\""})
-    EXPECT_NE(j.find(key), std::string::npos) << key << " in " << j;
+  s.base.lastFault = "say \"hi\"\n";
+  const std::string line = TelemetryLog::toJson(s);
+  EXPECT_EQ(line.find('\n'), std::string::npos) << "one object per line: " << line;
+  const nlohmann::json j = nlohmann::json::parse(line);
+  EXPECT_EQ(j.at("t"), 1.5);
+  EXPECT_EQ(j.at("head_commanded").at("pan"), 0.1);
+  EXPECT_TRUE(j.at("head_commanded").at("vergence").is_null());  // NaN: null, not nan
+  EXPECT_TRUE(j.at("head_measured").is_null());
+  EXPECT_TRUE(j.at("base_commanded").is_null());
+  EXPECT_EQ(j.at("base_sent").at("linear"), 0.0);
+  EXPECT_TRUE(j.at("odometry").is_null());
+  EXPECT_EQ(j.at("estop"), true);
+  EXPECT_EQ(j.at("faults").at("base_last"), "say \"hi\"\n");
+  EXPECT_EQ(j.at("faults").at("head_link"), true);
   EXPECT_THROW(TelemetryLog("/nonexistent-dir/x.jsonl"), horopter::Error);
+}
+
+TEST(TelemetryLog, AFailedWriteNamesTheLog) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  TelemetryLog log("/dev/full");  // opens; every write fails with ENOSPC
+  try {
+    log.write(TelemetrySample{});
+    ADD_FAILURE() << "no horopter::Error";
+  } catch (const horopter::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("telemetry log '/dev/full': No space left on device"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(log.lines(), 0);
 }

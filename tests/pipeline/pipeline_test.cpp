@@ -349,8 +349,19 @@ TEST(Pipeline, TraceAndSummaryAreJson) {
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
-  EXPECT_NE(text.str().find("\"traceEvents\""), std::string::npos);
-  EXPECT_NE(text.str().find("\"disparity #3\""), std::string::npos);
+  const auto trace = nlohmann::json::parse(text.str());
+  EXPECT_EQ(trace.at("displayTimeUnit"), "ms");
+  // Lane names (capture, disparity) and one event per stage per frame.
+  ASSERT_EQ(trace.at("traceEvents").size(), 2u + 8u);
+  EXPECT_EQ(trace.at("traceEvents").back().at("name"), "disparity #3");
+  // One event per line, between the opening and the closing line.
+  text.clear();
+  text.seekg(0);
+  std::string line;
+  int lines = 0;
+  while (std::getline(text, line))
+    ++lines;
+  EXPECT_EQ(lines, 2 + 10);
   EXPECT_THROW(writeChromeTrace(s, "/nonexistent-dir/trace.json"), Error);
 }
 

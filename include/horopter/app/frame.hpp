@@ -11,9 +11,9 @@
 #include <memory>
 #include <string>
 
+#include "horopter/interaction/body.hpp"
 #include "horopter/interaction/detection.hpp"
 #include "horopter/interaction/tracking.hpp"
-#include "horopter/interaction/body.hpp"
 #include "horopter/movement/movement.hpp"
 #include "horopter/pipeline/scheduler.hpp"
 #include "horopter/vision/capture.hpp"
@@ -26,7 +26,7 @@ struct RobotState;  // horopter/app/robot_stage.hpp: what the robot was told and
 // One frame and everything the stages derive from it. Stages fill the fields
 // they produce; later stages read them.
 struct HOROPTER_API Frame : StereoFrame {
-  std::shared_ptr<const Detections> detections;  // faces, hands, triangles
+  std::shared_ptr<const Detections> detections;   // faces, hands, triangles
   std::shared_ptr<const TrackingState> tracking;  // election, tracks, head command
   BodySample body;  // the godfather's head and hands (filled by tracking)
   std::shared_ptr<const MovementState> movement;  // LMA features, posterior, action

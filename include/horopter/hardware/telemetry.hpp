@@ -38,15 +38,18 @@ class HOROPTER_API TelemetrySource {
 };
 
 // JSON lines: one object per sample, flushed per line (a crash keeps what was written).
+// The constructor and write() throw horopter::Error, naming the file and the
+// reason, when the log cannot be opened or a line cannot be written (a full disk).
 class HOROPTER_API TelemetryLog {
  public:
-  explicit TelemetryLog(const std::string& path);  // throws horopter::Error if it cannot write
+  explicit TelemetryLog(const std::string& path);
   void write(const TelemetrySample& sample);
   static std::string toJson(const TelemetrySample& sample);
   long lines() const { return lines_; }
 
  private:
   std::mutex mutex_;
+  std::string path_;
   std::ofstream out_;
   long lines_ = 0;
 };
