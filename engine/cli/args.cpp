@@ -142,4 +142,31 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
   return o.str();
 }
 
+std::string optionHelpLine(const std::string& flag, const std::string& help, double min, double max,
+                           const std::string& unit, double fallback) {
+  constexpr std::size_t kIndent = 21, kWidth = 88;
+  std::ostringstream range;
+  range << "; " << min << ".." << max << (unit.empty() ? "" : " " + unit) << " (default "
+        << fallback << ")";
+  std::istringstream words(help + range.str());
+  std::string line = "  " + flag, out, word;
+  // The flag takes the first line alone when it reaches into the text's column.
+  if (line.size() + 1 > kIndent) {
+    out += line + "\n";
+    line.clear();
+  }
+  line.resize(kIndent, ' ');
+  bool first = true;
+  while (words >> word) {
+    if (!first && line.size() + 1 + word.size() > kWidth) {
+      out += line + "\n";
+      line = std::string(kIndent, ' ');
+      first = true;
+    }
+    line += (first ? "" : " ") + word;
+    first = false;
+  }
+  return out + line + "\n";
+}
+
 }  // namespace horopter::cli

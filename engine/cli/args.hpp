@@ -2,10 +2,13 @@
 // whatever is left over is an error, so a typo never passes silently.
 #pragma once
 
+#include <cmath>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "horopter/core/option_table.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::cli {
@@ -51,5 +54,36 @@ MedianParams parseMedianFlags(Args& args, MedianParams defaults);
 int parseThreads(Args& args, int fallback = 0);
 // Help text for those flags, with the defaults.
 std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median);
+
+// The flags of a tuning table (detectorOptions(), trackerOptions()...), each
+// parsed strictly within its range; absent flags keep p's values.
+template <class Params>
+Params parseOptionFlags(Args& args, std::span<const NumberOption<Params>> table, Params p) {
+  for (const NumberOption<Params>& o : table) {
+    const auto v = args.value(o.flag);
+    if (!v) continue;
+    if (o.integer())
+      o.set(p,
+            static_cast<double>(parseInteger(*v, o.flag, static_cast<long long>(std::ceil(o.min)),
+                                             static_cast<long long>(std::floor(o.max)))));
+    else
+      o.set(p, parseNumber(*v, o.flag, o.min, o.max));
+  }
+  return p;
+}
+
+// One help entry, "  --flag X  help; min..max unit (default D)", wrapped.
+std::string optionHelpLine(const std::string& flag, const std::string& help, double min, double max,
+                           const std::string& unit, double fallback);
+
+// The help of a tuning table's flags, with p's values as the defaults.
+template <class Params>
+std::string optionFlagsHelp(std::span<const NumberOption<Params>> table, const Params& p) {
+  std::string out;
+  for (const NumberOption<Params>& o : table)
+    out += optionHelpLine(std::string(o.flag) + (o.integer() ? " N" : " X"), o.help, o.min, o.max,
+                          o.unit, o.get(p));
+  return out;
+}
 
 }  // namespace horopter::cli

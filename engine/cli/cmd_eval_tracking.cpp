@@ -27,7 +27,7 @@ namespace horopter::cli {
 
 namespace {
 
-const char* kEvalTrackingHelp =
+const char* kEvalTrackingHelpStart =
     "Usage: horopter eval-tracking [--trials N] [--seed S] [--frames F] [--json] [options]\n\n"
     "Runs the whole pipeline (synthetic capture, closed loop with the head -> rectify ->\n"
     "disparity -> mask -> face and hand detection -> godfather election and tracking ->\n"
@@ -57,46 +57,19 @@ const char* kEvalTrackingHelp =
     "  --frames F         frames per trial (default 300, 10 s at 30 frames/s)\n"
     "  --size WxH         image size (default 640x480)\n"
     "  --scope S          region, full or both (default both)\n"
-    "  --threads N        threads of the disparity stage (default 1)\n"
+    "  --threads N        threads of the disparity stage, 1..256 (default 1)\n"
     "  --backend B        front end backend: scalar, avx2, opencl..., auto (default auto)\n"
-    "  --elect-s T        seconds inside the zone to become the godfather (default 2)\n"
-    "  --release-s T      seconds outside the zone to be released (default 1)\n"
     "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
     "  --no-head-control  the head stays still (open loop)\n"
-    "  --full-search-every N  search the whole region (or image) for faces every Nth frame\n"
-    "                     and only around the previous frame's faces in between, searching\n"
-    "                     everywhere when a face is not found again (default 5; 1: every frame)\n"
-    "  --follow-miss-frames N  a followed face not found again is looked for around its last\n"
-    "                     place for N frames before a full search (default 0: at once)\n"
-    "  --exhaustive-search-every N  in the region, full face searches look only around the\n"
-    "                     zone's skin blobs but every Nth (default 5; 1: every one; 0: none)\n"
     "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
     "                     to 0.7 m; nearer hands have no disparity, so no zone; a wider range\n"
     "                     also widens the band on the left the right view cannot match)\n"
-    "  --face-scale S     the face cascade runs on the image scaled by S once a face is\n"
-    "                     followed (default 0.75; 0.25..1)\n"
-    "  --acquisition-face-scale S  ... and by S while no face was found in the previous\n"
-    "                     frame (default 1: a face walking in is found frames earlier)\n"
-    "  --min-neighbors N  the cascade's grouping threshold (default 3)\n"
-    "  --face-zone-cover F  a face is inside the zone when the mask covers this fraction\n"
-    "                     of its central half (default 0.3)\n"
-    "  --min-skin-luma F  hand skin darker than F times the face's skin is not skin\n"
-    "                     (default 0.5; 0: off)\n"
-    "  --pinned-disparity F  a hand candidate whose mean disparity is at least F of the\n"
-    "                     largest is no hand: a match pinned at the range's end (default\n"
-    "                     0.94; 0: no limit)\n"
-    "  --min-hand-luma F  a hand candidate's mean grey level must be at least F times the\n"
-    "                     face's skin (default 0.55; 0: no limit): skin-coloured cloth is darker\n"
-    "  --coast-jump-s T   a hand track without detections for T s moves to the free hand\n"
-    "                     candidate on its side nearest to it (default 0.1; 0: never)\n"
-    "  --blind-follow-s T  where stereo is blind (left of what the right camera sees, or\n"
-    "                     nearer than the range), a hand missed by the detector follows its\n"
-    "                     last detected look for up to T s (default 1; 0: never)\n"
-    "  --blind-min-score S  ... where the look correlates by at least S (default 0.7)\n"
+    "Detection, election, tracking and head control (option tables):\n";
+
+// After the tables' flags.
+const char* kEvalTrackingHelpEnd =
     "  --frame-hands      head control pans to frame the head and tracked hands, not only\n"
     "                     the face (off by default: it measured worse)\n"
-    "  --hand-shift F     with --frame-hands, the most the framing moves the face, as a\n"
-    "                     fraction of the width (default 0.25)\n"
     "  --no-follow-head-turns  the hand and head tracks stay where they were in the\n"
     "                     image when the head turns (by default they move with the image)\n"
     "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
@@ -191,6 +164,15 @@ Json scoreJson(const ScopeScore& s, const std::vector<TrackingTrial>& trials) {
               {"per_trial", std::move(perTrial)}};
 }
 
+// The tuning options of the run, {name: value}, from their table.
+template <class Params>
+Json optionsJson(std::span<const NumberOption<Params>> table, const Params& p) {
+  Json out = Json::object();
+  for (const NumberOption<Params>& o : table)
+    out[o.name] = o.integer() ? Json(static_cast<int>(o.get(p))) : jsonNumber(o.get(p));
+  return out;
+}
+
 double pct(std::int64_t lost, std::int64_t of) {
   return of > 0 ? 100.0 * static_cast<double>(lost) / static_cast<double>(of) : 0;
 }
@@ -199,50 +181,36 @@ double pct(std::int64_t lost, std::int64_t of) {
 
 int runEvalTracking(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kEvalTrackingHelp;
+    TrialOptions defaults;
+    std::cout << kEvalTrackingHelpStart << optionFlagsHelp(detectorOptions(), defaults.detector)
+              << optionFlagsHelp(electionOptions(), defaults.tracker.election)
+              << optionFlagsHelp(trackerOptions(), defaults.tracker)
+              << optionFlagsHelp(headControlOptions(), defaults.head) << kEvalTrackingHelpEnd;
     return 0;
   }
   TrialOptions base;
-  const int trials = args.intValue("--trials", 20);
-  const int jobs = args.intValue("--jobs", 1);
-  const long long seed = std::stoll(args.stringValue("--seed", "1000"));
-  base.frames = args.intValue("--frames", 300);
+  const int trials = args.intValue("--trials", 20, 1, 100000);
+  const int jobs = args.intValue("--jobs", 1, 1, 64);
+  const long long seed = parseInteger(args.stringValue("--seed", "1000"), "--seed", 0, 1LL << 53);
+  base.frames = args.intValue("--frames", 300, 1, 1000000);
   if (auto size = args.value("--size")) {
     const ImageSize wh = parseImageSize(*size, "--size", {64, 64}, {4096, 4096});
     base.width = wh.width;
     base.height = wh.height;
   }
   const std::string scope = args.stringValue("--scope", "both");
-  base.threads = args.intValue("--threads", 1);
+  base.threads = parseThreads(args, 1);
   base.backend = args.stringValue("--backend", "auto");
-  base.tracker.election.electS = args.doubleValue("--elect-s", base.tracker.election.electS);
-  base.tracker.election.releaseS = args.doubleValue("--release-s", base.tracker.election.releaseS);
   const std::string formula = args.stringValue("--head-formula", "atan2");
   base.headControl = !args.flag("--no-head-control");
-  base.detector.fullSearchEvery =
-      args.intValue("--full-search-every", base.detector.fullSearchEvery);
-  base.stereo.numDisparities = args.intValue("--num-disparities", base.stereo.numDisparities);
-  base.detector.followMissFrames =
-      args.intValue("--follow-miss-frames", base.detector.followMissFrames);
-  base.detector.exhaustiveSearchEvery =
-      args.intValue("--exhaustive-search-every", base.detector.exhaustiveSearchEvery);
-  base.detector.faceScale = args.doubleValue("--face-scale", base.detector.faceScale);
-  base.detector.acquisitionFaceScale =
-      args.doubleValue("--acquisition-face-scale", base.detector.acquisitionFaceScale);
-  base.detector.minNeighbors = args.intValue("--min-neighbors", base.detector.minNeighbors);
-  base.detector.faceZoneCover = args.doubleValue("--face-zone-cover", base.detector.faceZoneCover);
-  base.tracker.coastJumpS = args.doubleValue("--coast-jump-s", base.tracker.coastJumpS);
-  base.detector.minSkinLumaOfFace =
-      args.doubleValue("--min-skin-luma", base.detector.minSkinLumaOfFace);
-  base.tracker.pinnedDisparityFraction =
-      args.doubleValue("--pinned-disparity", base.tracker.pinnedDisparityFraction);
-  base.tracker.minHandLumaOfFace =
-      args.doubleValue("--min-hand-luma", base.tracker.minHandLumaOfFace);
-  base.tracker.blindFollowS = args.doubleValue("--blind-follow-s", base.tracker.blindFollowS);
-  base.tracker.blindMinScore = args.doubleValue("--blind-min-score", base.tracker.blindMinScore);
+  base.stereo.numDisparities =
+      args.intValue("--num-disparities", base.stereo.numDisparities, 16, 1024);
+  base.detector = parseOptionFlags(args, detectorOptions(), base.detector);
+  base.tracker.election = parseOptionFlags(args, electionOptions(), base.tracker.election);
+  base.tracker = parseOptionFlags(args, trackerOptions(), base.tracker);
+  base.head = parseOptionFlags(args, headControlOptions(), base.head);
   if (args.flag("--frame-hands")) base.head.frameHands = true;
   if (args.flag("--no-follow-head-turns")) base.followHeadTurns = false;
-  base.head.maxHandShiftFraction = args.doubleValue("--hand-shift", base.head.maxHandShiftFraction);
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
   const bool requireBetter = args.flag("--require-region-better");
   const bool json = args.flag("--json");
@@ -250,18 +218,12 @@ int runEvalTracking(Args& args) {
   const std::string stills = args.stringValue("--stills", "");
   const bool diagnose = args.flag("--diagnose");
   args.finish("eval-tracking");
-  if (trials < 1 || trials > 100000) throw Error("--trials must be within 1..100000");
-  if (jobs < 1 || jobs > 64) throw Error("--jobs must be within 1..64");
-  if (seed < 0) throw Error("--seed must be >= 0");
   const eval::SeedUse seedUse =
       eval::trialSeedUse(static_cast<std::uint64_t>(seed), trials, "--seed");
   if (diagnose) eval::requireTuningSeeds(seedUse, "--diagnose");
   if (!stills.empty()) eval::requireTuningSeeds(seedUse, "--stills");
-  if (base.frames < 1) throw Error("--frames must be >= 1");
-  if (base.detector.fullSearchEvery < 1) throw Error("--full-search-every must be >= 1");
-  if (base.stereo.numDisparities < 16 || base.stereo.numDisparities % 16 != 0)
+  if (base.stereo.numDisparities % 16 != 0)
     throw Error("--num-disparities must be a positive multiple of 16");
-  if (base.threads < 1 || base.threads > 256) throw Error("--threads must be in 1..256");
   if (scope != "region" && scope != "full" && scope != "both")
     throw Error("--scope takes region, full or both, got '" + scope + "'");
   if (formula != "atan2" && formula != "paper")
@@ -345,6 +307,10 @@ int runEvalTracking(Args& args) {
     for (std::size_t k = 0; k < scores.size(); ++k)
       out["scopes"].push_back(scoreJson(scores[k], perTrial[k]));
     if (scores.size() == 2) out["region_better"] = better;
+    out["options"] = Json{{"detector", optionsJson(detectorOptions(), base.detector)},
+                          {"election", optionsJson(electionOptions(), base.tracker.election)},
+                          {"tracker", optionsJson(trackerOptions(), base.tracker)},
+                          {"head_control", optionsJson(headControlOptions(), base.head)}};
     writeJsonLine(detail::jsonText(out));
   } else {
     std::printf("%d trials (seeds %lld-%lld, %s), %d frames each at %dx%d, head control %s\n",

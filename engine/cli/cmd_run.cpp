@@ -37,7 +37,7 @@ extern "C" void onInterrupt(int) {
   gInterrupted.store(true);
 }
 
-const char* kRunHelp =
+const char* kRunHelpStart =
     "Usage: horopter run [options]\n\n"
     "Runs the frame pipeline (capture -> rectify -> disparity -> mask -> detection ->\n"
     "tracking -> head control -> movement -> robot -> annotate) with several frames in\n"
@@ -67,9 +67,10 @@ const char* kRunHelp =
     "                          middle of the search range)\n"
     "  --focal-px F            without --calib: focal length (default: image width)\n"
     "Detection, tracking, head control:\n"
-    "  --detect SCOPE     region (inside the horopter, default), full (the whole image) or off\n"
-    "  --elect-s T        seconds inside the zone to become the godfather (default 2)\n"
-    "  --release-s T      seconds outside the zone to be released (default 1)\n"
+    "  --detect SCOPE     region (inside the horopter, default), full (the whole image) or off\n";
+
+// After the election's flags (its option table).
+const char* kRunHelpEnd =
     "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
     "  --no-head-control  synthetic scene: the head stays still (default: closed loop, a\n"
     "                     command from frame N acts at frame N + 3)\n"
@@ -174,8 +175,7 @@ RunJob parseRun(Args& args) {
     c.detection.reset();
   else
     throw Error("--detect takes region, full or off, got '" + detect + "'");
-  c.tracker.election.electS = args.doubleValue("--elect-s", c.tracker.election.electS);
-  c.tracker.election.releaseS = args.doubleValue("--release-s", c.tracker.election.releaseS);
+  c.tracker.election = parseOptionFlags(args, electionOptions(), c.tracker.election);
   const std::string formula = args.stringValue("--head-formula", "atan2");
   if (formula != "atan2" && formula != "paper")
     throw Error("--head-formula takes atan2 or paper, got '" + formula + "'");
@@ -311,7 +311,9 @@ void printSummary(const RunSummary& s, const RunJob& job, const std::string& bac
 
 int runPipeline(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kRunHelp << stereoFlagsHelp(StereoParams{}, MedianParams{});
+    const ElectionOptions election;
+    std::cout << kRunHelpStart << optionFlagsHelp(electionOptions(), election) << kRunHelpEnd
+              << stereoFlagsHelp(StereoParams{}, MedianParams{});
     return 0;
   }
   RunJob job = parseRun(args);

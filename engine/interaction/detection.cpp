@@ -36,15 +36,43 @@ cv::Mat ellipse(int diameter) {
 
 }  // namespace
 
+std::span<const NumberOption<DetectorOptions>> detectorOptions() {
+  using O = DetectorOptions;
+  static const NumberOption<O> table[] = {
+      {"fullSearchEvery", "--full-search-every", "frames", 1, 1000,
+       "search the whole region (or image) for faces every Nth frame; between, follow the "
+       "previous frame's faces",
+       &O::fullSearchEvery},
+      {"followMissFrames", "--follow-miss-frames", "frames", 0, 1000,
+       "a followed face not found again is looked for around its last place this many frames "
+       "before a full search",
+       &O::followMissFrames},
+      {"exhaustiveSearchEvery", "--exhaustive-search-every", "searches", 0, 1000,
+       "region, a face followed: full searches look only around skin blobs but one in N "
+       "(0: never everywhere)",
+       &O::exhaustiveSearchEvery},
+      {"faceScale", "--face-scale", "", 0.25, 1,
+       "the face cascade runs on the image scaled by this once a face is followed", &O::faceScale},
+      {"acquisitionFaceScale", "--acquisition-face-scale", "", 0.25, 1,
+       "... and by this while no face was found in the previous frame", &O::acquisitionFaceScale},
+      {"minNeighbors", "--min-neighbors", "", 0, 100, "the face cascade's grouping threshold",
+       &O::minNeighbors},
+      {"faceZoneCover", "--face-zone-cover", "", 0, 1,
+       "a face is inside the zone when the mask covers this fraction of its central half",
+       &O::faceZoneCover},
+      {"minSkinLumaOfFace", "--min-skin-luma", "", 0, 4,
+       "hand skin darker than this fraction of the face's skin is not skin (0: off)",
+       &O::minSkinLumaOfFace},
+  };
+  return table;
+}
+
 Detector::Detector(DetectorOptions options) : options_(std::move(options)) {
   const DetectorOptions& o = options_;
+  checkRanges(detectorOptions(), o);
   if (o.maskErodePx < -1 || o.maskClosePx < 0 || o.openPx < 0 || o.closePx < 0 ||
       o.minHandAreaPx < 1)
     throw Error("mask growth, opening and closing must be >= 0 px and the hand area >= 1 px");
-  if (!(o.minSkinLumaOfFace >= 0 && o.minSkinLumaOfFace <= 4))
-    throw Error("minSkinLumaOfFace (skin's grey level over the face's) must be in [0, 4]");
-  if (!(o.acquisitionFaceScale >= 0.25 && o.acquisitionFaceScale <= 1))
-    throw Error("the acquisition's face scale must be in [0.25, 1]");
   impl_ = std::make_unique<Impl>(o);  // checks the face options, loads the cascade
   if (o.openPx > 0) impl_->openKernel = ellipse(o.openPx);
   if (o.closePx > 0) impl_->closeKernel = ellipse(o.closePx);

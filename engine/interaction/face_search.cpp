@@ -49,21 +49,15 @@ double zoneCover(const cv::Mat& mask, const cv::Rect& box) {
 FaceSearch::FaceSearch(const DetectorOptions& o) {
   if (!(o.scaleFactor > 1.0 && o.scaleFactor < 2.0))
     throw Error("face scale factor must be in (1, 2), e.g. 1.1");
-  if (o.minNeighbors < 0) throw Error("face minNeighbors must be >= 0");
-  if (o.fullSearchEvery < 1 || !(o.followMarginFaces >= 0 && o.followMarginFaces <= 10) ||
-      o.followMissFrames < 0 || o.exhaustiveSearchEvery < 0 || !(o.skinGuideArea >= 0))
-    throw Error(
-        "fullSearchEvery must be >= 1, followMarginFaces within 0..10, followMissFrames, "
-        "exhaustiveSearchEvery and skinGuideArea >= 0");
-  if (!(o.faceScale >= 0.25 && o.faceScale <= 1)) throw Error("face scale must be in [0.25, 1]");
+  // The options of detectorOptions() are checked against it (Detector).
+  if (!(o.followMarginFaces >= 0 && o.followMarginFaces <= 10) || !(o.skinGuideArea >= 0))
+    throw Error("followMarginFaces must be within 0..10 and skinGuideArea >= 0");
   if (!(o.depthFacePercentiles[0] >= 0 && o.depthFacePercentiles[0] <= o.depthFacePercentiles[1] &&
         o.depthFacePercentiles[1] <= 1) ||
       !(o.depthFaceMargin >= 1))
     throw Error("depth face sizes need percentiles 0 <= far <= near <= 1 and a margin >= 1");
   if (o.depthSizeForgetSearches < 1)
     throw Error("depthSizeForgetSearches must be >= 1 (full searches without a face)");
-  if (!(o.faceZoneCover >= 0 && o.faceZoneCover <= 1))
-    throw Error("faceZoneCover (the zone's share of a face's centre) must be in [0, 1]");
   if (o.minFacePx != 0 && o.minFacePx < 20)
     throw Error(
         "the smallest face must be >= 20 px (the cascade's window), or 0 for a 16th of the width");

@@ -19,7 +19,19 @@ const char* electionStateName(ElectionState state) {
   return "unknown";
 }
 
+std::span<const NumberOption<ElectionOptions>> electionOptions() {
+  using O = ElectionOptions;
+  static const NumberOption<O> table[] = {
+      {"electS", "--elect-s", "s", 0, 3600, "seconds inside the zone to become the godfather",
+       &O::electS},
+      {"releaseS", "--release-s", "s", 0, 3600, "seconds outside the zone to be released",
+       &O::releaseS},
+  };
+  return table;
+}
+
 GodfatherElection::GodfatherElection(ElectionOptions options) : options_(options) {
+  checkRanges(electionOptions(), options);
   if (!(options.electS >= 0) || !(options.releaseS >= 0) || !(options.candidateGraceS >= 0) ||
       !std::isfinite(options.electS) || !std::isfinite(options.releaseS))
     throw Error("godfather election times must be finite and >= 0 seconds");

@@ -76,13 +76,22 @@ hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& ta
   return c;
 }
 
+std::span<const NumberOption<HeadControlOptions>> headControlOptions() {
+  using O = HeadControlOptions;
+  static const NumberOption<O> table[] = {
+      {"maxHandShiftFraction", "--hand-shift", "", 0, 0.5,
+       "framing the hands, the most the face moves from its place, as a fraction of the width",
+       &O::maxHandShiftFraction},
+  };
+  return table;
+}
+
 void validate(const HeadControlOptions& o) {
+  checkRanges(headControlOptions(), o);
   if (!(o.gain > 0 && o.gain <= 1)) throw Error("head control gain must be in (0, 1]");
   if (!(o.maxRateRadPerS > 0) || !(o.framesPerSecond > 0) || o.deadbandRad < 0)
     throw Error("head control rate and frame rate must be positive, the dead band >= 0");
   if (o.actuationDelayFrames < 1) throw Error("the actuation delay must be >= 1 frame");
-  if (!(o.maxHandShiftFraction >= 0 && o.maxHandShiftFraction <= 0.5))
-    throw Error("head control's hand shift must be a fraction of the width in [0, 0.5]");
   if (o.formula == PanTiltFormula::Paper && !(o.lambda > 0))
     throw Error("the paper's head formula needs lambda > 0");
 }

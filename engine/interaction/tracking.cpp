@@ -57,6 +57,7 @@ namespace {
 constexpr double kUnknownDepthM = 1.5;
 
 void validate(const TrackerOptions& o) {
+  checkRanges(trackerOptions(), o);
   if (!(o.coastS >= 0) || !(o.coastJumpS >= 0) || !(o.reachFaceWidths > 0) ||
       !(o.maxHandAreaFaces > o.minHandAreaFaces) || o.minHandAreaFaces < 0)
     throw Error("tracker coast and coast-jump times must be >= 0 s, reach and hand area > 0");
@@ -68,11 +69,6 @@ void validate(const TrackerOptions& o) {
       !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
       !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
     throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
-  if (!(o.pinnedDisparityFraction >= 0 && o.pinnedDisparityFraction <= 1))
-    throw Error("tracker pinnedDisparityFraction must be in [0, 1] (0: no limit)");
-  if (!(o.minHandLumaOfFace >= 0 && o.minHandLumaOfFace <= 4))
-    throw Error(
-        "tracker minHandLumaOfFace (a hand's grey level over the face's) must be in [0, 4]");
   if (!(o.blindFollowS >= 0) || !(o.blindBandFaces >= 0) || !(o.blindNearFraction > 0) ||
       !(o.blindValidFraction >= 0 && o.blindValidFraction <= 1) || !(o.blindPatchFaces > 0) ||
       !(o.blindSearchFaces > 0) || !(o.blindMinScore >= -1 && o.blindMinScore <= 1) ||
@@ -85,6 +81,29 @@ void validate(const TrackerOptions& o) {
 }
 
 }  // namespace
+
+std::span<const NumberOption<TrackerOptions>> trackerOptions() {
+  using O = TrackerOptions;
+  static const NumberOption<O> table[] = {
+      {"coastJumpS", "--coast-jump-s", "s", 0, 60,
+       "a hand track without detections for this long moves to the free hand candidate",
+       &O::coastJumpS},
+      {"pinnedDisparityFraction", "--pinned-disparity", "", 0, 1,
+       "a hand candidate whose disparity is at least this fraction of the largest searched is "
+       "refused (0: no limit)",
+       &O::pinnedDisparityFraction},
+      {"minHandLumaOfFace", "--min-hand-luma", "", 0, 4,
+       "a hand candidate's mean grey level must be at least this fraction of the face's (0: off)",
+       &O::minHandLumaOfFace},
+      {"blindFollowS", "--blind-follow-s", "s", 0, 60,
+       "where stereo is blind, a missed hand follows its look for at most this long after its "
+       "last detection (0: off)",
+       &O::blindFollowS},
+      {"blindMinScore", "--blind-min-score", "", -1, 1,
+       "... where the look correlates by at least this", &O::blindMinScore},
+  };
+  return table;
+}
 
 BodyTracker::BodyTracker(TrackerOptions options) : options_(options) {
   validate(options_);

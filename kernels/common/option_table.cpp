@@ -66,4 +66,10 @@ std::string rangeMessage(const std::string& name, const std::string& unit, long 
          ", got " + std::to_string(value);
 }
 
+std::string numberRangeMessage(const std::string& name, const std::string& unit, double min,
+                               double max, double value) {
+  return name + " must be within " + numberText(min) + ".." + numberText(max) +
+         (unit.empty() ? "" : " " + unit) + ", got " + numberText(value);
+}
+
 }  // namespace horopter

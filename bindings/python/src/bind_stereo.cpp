@@ -4,12 +4,35 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "horopter/interaction/detection.hpp"
+#include "horopter/interaction/godfather.hpp"
+#include "horopter/interaction/head_control.hpp"
+#include "horopter/interaction/tracking.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "stereo_args.hpp"
 
 namespace horopter::python {
 
 namespace {
+
+// A tuning table as a list of dicts, the way stereo_options() lists its own.
+template <class Params>
+py::list tuningTable(std::span<const NumberOption<Params>> table, const Params& defaults) {
+  py::list out;
+  for (const NumberOption<Params>& o : table) {
+    py::dict d;
+    d["name"] = o.name;
+    d["flag"] = o.flag;
+    d["unit"] = o.unit;
+    d["min"] = o.min;
+    d["max"] = o.max;
+    d["integer"] = o.integer();
+    d["default"] = o.get(defaults);
+    d["help"] = o.help;
+    out.append(d);
+  }
+  return out;
+}
 
 // One front end per matcher. The lock makes concurrent calls on the same
 // matcher wait their turn (the front end reuses its buffers); it is only ever
@@ -117,6 +140,22 @@ void bindStereo(py::module_& m) {
       },
       "The integer stereo parameters as declared once in the library: name, CLI flag, unit, "
       "range, default, help");
+  m.def(
+      "tuning_options",
+      [] {
+        const DetectorOptions detector;
+        const ElectionOptions election;
+        const TrackerOptions tracker;
+        const HeadControlOptions head;
+        py::dict out;
+        out["detector"] = tuningTable(detectorOptions(), detector);
+        out["election"] = tuningTable(electionOptions(), election);
+        out["tracker"] = tuningTable(trackerOptions(), tracker);
+        out["head_control"] = tuningTable(headControlOptions(), head);
+        return out;
+      },
+      "The detector's, election's, tracker's and head control's tuning options as declared "
+      "once in the library: name, CLI flag, unit, range, default, help");
   // The integer parameters from their table (horopter/kernels/stereo_params.hpp).
   for (const IntOption<StereoParams>& o : stereoOptions()) {
     const auto member = o.member;

@@ -109,3 +109,18 @@ def test_stereo_options_come_from_the_librarys_table():
             horopter.StereoParams(**{name: o["max"] + 1})
     with pytest.raises(TypeError, match="must be an int"):
         horopter.StereoParams(numDisparities=True)
+
+
+def test_tuning_options_come_from_the_librarys_tables():
+    tables = horopter.tuning_options()
+    assert set(tables) == {"detector", "election", "tracker", "head_control"}
+    flags = set()
+    for table in tables.values():
+        for o in table:
+            assert o["flag"].startswith("--") and o["flag"] not in flags
+            flags.add(o["flag"])
+            assert o["min"] <= o["default"] <= o["max"]
+            assert o["help"]
+    election = {o["name"]: o for o in tables["election"]}
+    assert election["electS"]["flag"] == "--elect-s" and election["electS"]["unit"] == "s"
+    assert election["electS"]["default"] == 2.0

@@ -6,6 +6,10 @@
 
 #include "horopter/core/export.hpp"
 
+#include <span>
+
+#include "horopter/core/option_table.hpp"
+
 #include <opencv2/core.hpp>
 
 #include <memory>
@@ -164,6 +168,10 @@ struct HOROPTER_API Detections {
   bool fullFaceSearch = true;       // faces searched over the whole region (not only followed)
   std::int64_t searchedPixels = 0;  // pixels the skin model classified
 };
+
+// The detector's options a user tunes (flags, help, ranges, JSON keys); validation
+// checks them against it.
+HOROPTER_API std::span<const NumberOption<DetectorOptions>> detectorOptions();
 
 // Runs both detectors on one frame. Not thread-safe (one per pipeline lane).
 class HOROPTER_API Detector {

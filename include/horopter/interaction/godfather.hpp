@@ -8,6 +8,10 @@
 
 #include "horopter/core/export.hpp"
 
+#include <span>
+
+#include "horopter/core/option_table.hpp"
+
 #include <optional>
 
 namespace horopter {
@@ -19,6 +23,10 @@ struct HOROPTER_API ElectionOptions {
   // a few frames is still inside the zone).
   double candidateGraceS = 0.3;
 };
+
+// The election options a user tunes (flags, help, ranges, JSON keys); validation
+// checks them against it.
+HOROPTER_API std::span<const NumberOption<ElectionOptions>> electionOptions();
 
 enum class ElectionState { None, Candidate, Godfather };
 HOROPTER_API const char* electionStateName(ElectionState state);

@@ -17,6 +17,10 @@
 
 #include "horopter/core/export.hpp"
 
+#include <span>
+
+#include "horopter/core/option_table.hpp"
+
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -76,6 +80,10 @@ HOROPTER_API double paperAngle(double offsetPx, double focalPx, double distanceM
 // gain, rate limit over one frame, angle limits. Vergence is kept.
 HOROPTER_API hw::HeadAngles limitCommand(const hw::HeadAngles& pose, const hw::HeadAngles& target,
                                          const HeadControlOptions& options);
+
+// The head control's options a user tunes (flags, help, ranges, JSON keys); validation
+// checks them against it.
+HOROPTER_API std::span<const NumberOption<HeadControlOptions>> headControlOptions();
 
 // Throws horopter::Error for options out of range.
 HOROPTER_API void validate(const HeadControlOptions& options);

@@ -6,6 +6,10 @@
 
 #include "horopter/core/export.hpp"
 
+#include <span>
+
+#include "horopter/core/option_table.hpp"
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -121,6 +125,10 @@ struct HOROPTER_API TrackerOptions {
   // mistaken for the parts' own motion; empty: tracks stay where they were.
   CapturePose capturePose;
 };
+
+// The tracker's options a user tunes (flags, help, ranges, JSON keys); validation
+// checks them against it.
+HOROPTER_API std::span<const NumberOption<TrackerOptions>> trackerOptions();
 
 struct HOROPTER_API TrackingState {
   double timeS = 0;
