@@ -9,18 +9,12 @@
 #include "horopter/core/error.hpp"
 #include "horopter/core/option_table.hpp"
 #include "horopter/kernels/stereo_params.hpp"
+#include "test_support.hpp"
 
 namespace horopter {
 namespace {
 
-std::string errorOf(auto&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(OptionTable, IntegersParseWholeAndInRangeOnly) {
   EXPECT_EQ(parseInteger("42", "--n", 0, 100), 42);

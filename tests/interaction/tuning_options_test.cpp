@@ -13,18 +13,12 @@
 #include "horopter/interaction/godfather.hpp"
 #include "horopter/interaction/head_control.hpp"
 #include "horopter/interaction/tracking.hpp"
+#include "test_support.hpp"
 
 namespace horopter {
 namespace {
 
-std::string errorOf(auto&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 template <class Params>
 void expectWellFormed(std::span<const NumberOption<Params>> table, std::set<std::string>& flags) {

@@ -10,10 +10,21 @@
 
 #include <gtest/gtest.h>
 
+#include "horopter/core/error.hpp"
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter::test {
+
+// The message of the horopter::Error that fn throws, or "" when it throws none.
+std::string errorOf(auto&& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // splitmix64: the same sequence on every platform, compiler and standard
 // library (std::uniform_int_distribution is not), so that golden hashes of

@@ -14,6 +14,7 @@
 #include "horopter/vision/capture.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "test_support.hpp"
 
 namespace horopter {
 namespace {
@@ -37,14 +38,7 @@ fs::path freshDir(const std::string& name) {
   return dir;
 }
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(Capture, DirectorySourceReadsPairsInSortedOrder) {
   const fs::path dir = freshDir("horopter_dir_source");
