@@ -51,13 +51,13 @@ const std::vector<Frame>& replayFrames() {
 void addFrontEnd(Pipeline& pipeline, int threads) {
   const StereoParams stereo;
   const Backend& backend = findBackend("auto");
-  pipeline.add(makeRectifyStage())
+  pipeline
+      .add(makeRectifyStage({},
+                            [](const Frame& f, std::vector<std::int16_t>& out) {
+                              out.assign(f.leftGrey.cols, 16 * 20);
+                            }))
       .add(makeDisparityStage(stereo, MedianParams{}, backend, threads))
-      .add(makeMaskStage(
-          [](const Frame& f, std::vector<std::int16_t>& out) {
-            out.assign(f.disparity.cols, 16 * 20);
-          },
-          stereo, backend));
+      .add(makeMaskStage(stereo, backend));
 }
 
 void runBatches(benchmark::State& state, bool render) {

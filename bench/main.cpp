@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   horopter::bench::registerDisparityRows();
   horopter::bench::registerKernelRows();
   horopter::bench::registerFrontendRows();
+  horopter::bench::registerZoneRows();
 
   std::vector<char*> args = withDefaults(argc, argv);
   int count = static_cast<int>(args.size()) - 1;

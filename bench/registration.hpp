@@ -13,4 +13,8 @@ void registerKernelRows();
 // frontend/...: StereoFrontend, the whole per-frame chain.
 void registerFrontendRows();
 
+// frontend/.../scene and .../zone: the front end on the synthetic scene's
+// frame, full range and zone-limited.
+void registerZoneRows();
+
 }  // namespace horopter::bench

@@ -91,6 +91,7 @@ bool AssembledPipeline::detecting() const {
 }
 
 AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
+  validate(c.zoneSearch, c.stereo);
   auto parts = std::make_unique<AssembledPipeline::Parts>();
   parts->backend = &findBackend(c.backend);
   parts->detecting = c.detection.has_value() && c.stopAfter == StopAfter::Everything;
@@ -118,11 +119,12 @@ AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
   parts->pipeline = std::make_unique<Pipeline>(options);
   Pipeline& p = *parts->pipeline;
 
-  p.add(makeRectifyStage(zone.rectify));
-  if (c.stopAfter != StopAfter::Rectify) {
-    p.add(makeDisparityStage(c.stereo, c.median, *parts->backend, c.threads));
-    if (c.stopAfter != StopAfter::Disparity)
-      p.add(makeMaskStage(zone.thresholds, c.stereo, *parts->backend));
+  if (c.stopAfter == StopAfter::Rectify) {
+    p.add(makeRectifyStage(zone.rectify));
+  } else {
+    p.add(makeRectifyStage(zone.rectify, zone.thresholds));
+    p.add(makeDisparityStage(c.stereo, c.median, *parts->backend, c.threads, c.zoneSearch));
+    if (c.stopAfter != StopAfter::Disparity) p.add(makeMaskStage(c.stereo, *parts->backend));
   }
   if (parts->detecting) {
     DetectorOptions detector = c.detector;
@@ -131,7 +133,7 @@ AssembledPipeline buildPipeline(const PipelineConfig& c, PipelineHooks hooks) {
     TrackerOptions tracker = c.tracker;
     tracker.rig = zone.rig;
     tracker.framesPerSecond = zone.framesPerSecond;
-    tracker.maxDisparityPx = c.stereo.minDisparity + c.stereo.numDisparities - 1;
+    tracker.maxDisparityPx = largestDisparity(c.stereo, c.zoneSearch);
     tracker.captureTime = c.live;
     if (parts->closedLoop && c.followHeadTurns) tracker.capturePose = opened->capturePose;
     p.add(makeTrackingStage(tracker));

@@ -33,7 +33,8 @@ cv::Mat toGreyMat(const cv::Mat& image) {
 
 class RectifyStage final : public Stage {
  public:
-  explicit RectifyStage(RectifyFunction rectify) : rectify_(std::move(rectify)) {}
+  RectifyStage(RectifyFunction rectify, ThresholdFunction thresholds)
+      : rectify_(std::move(rectify)), thresholds_(std::move(thresholds)) {}
   std::string name() const override { return "rectify"; }
   void process(Frame& f) override {
     if (f.left.size() != f.right.size()) throw Error("left and right images differ in size");
@@ -45,26 +46,48 @@ class RectifyStage final : public Stage {
     }
     f.leftGrey = toGreyMat(f.left);
     f.rightGrey = toGreyMat(f.right);
+    if (!thresholds_) return;
+    f.thresholds.assign(static_cast<std::size_t>(f.leftGrey.cols), 0);
+    thresholds_(f, f.thresholds);
+    if (f.thresholds.size() != static_cast<std::size_t>(f.leftGrey.cols))
+      throw Error("the threshold function gave " + std::to_string(f.thresholds.size()) +
+                  " thresholds for " + std::to_string(f.leftGrey.cols) + " columns");
   }
 
  private:
   RectifyFunction rectify_;
+  ThresholdFunction thresholds_;
 };
+
+// The frame's search range: the zone's when zone search is on.
+SearchRange searchRangeOf(const Frame& f, const StereoParams& stereo, const ZoneSearch& zone) {
+  if (!zone.enabled) return fullRange(stereo);
+  if (f.thresholds.empty())
+    throw Error(
+        "zone search needs the zone's thresholds before the disparity (the rectify "
+        "stage's threshold function)");
+  return zoneSearchRange(stereo, f.thresholds, zone);
+}
 
 class DisparityStage final : public Stage {
  public:
   DisparityStage(const StereoParams& stereo, const MedianParams& median, const Backend& backend,
-                 int threads)
-      : frontend_(stereo, median, backend, threads) {}
+                 int threads, const ZoneSearch& zone)
+      : frontend_(stereo, median, backend, threads), zone_(zone) {
+    validate(zone_, stereo);
+  }
   std::string name() const override { return "disparity"; }
   void process(Frame& f) override {
     if (f.leftGrey.empty()) throw Error("no grey views: put the rectify stage before disparity");
-    const Image& d = frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey));
+    f.searchRange = searchRangeOf(f, frontend_.stereoParams(), zone_);
+    const Image& d =
+        frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey), f.searchRange);
     f.disparity = matOf(d).clone();
   }
 
  private:
   StereoFrontend frontend_;
+  ZoneSearch zone_;
 };
 
 // On an OpenCL device the whole chain stays on the device (one upload of
@@ -75,60 +98,62 @@ class DisparityStage final : public Stage {
 class OpenClDisparityStage final : public Stage {
  public:
   OpenClDisparityStage(const StereoParams& stereo, const MedianParams& median,
-                       const std::string& device, int cpuThreads)
-      : frontend_(stereo, median, device, 1, cpuThreads) {}
+                       const std::string& device, int cpuThreads, const ZoneSearch& zone)
+      : frontend_(stereo, median, device, 1, cpuThreads), stereo_(stereo), zone_(zone) {
+    validate(zone_, stereo);
+  }
   std::string name() const override { return "disparity"; }
   void process(Frame& f) override {
     if (f.leftGrey.empty()) throw Error("no grey views: put the rectify stage before disparity");
-    const Image& d = frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey));
+    f.searchRange = searchRangeOf(f, stereo_, zone_);
+    const Image& d =
+        frontend_.computeDisparity(viewOf(f.leftGrey), viewOf(f.rightGrey), f.searchRange);
     f.disparity = matOf(d).clone();
   }
 
  private:
   OpenClFrontend frontend_;
+  StereoParams stereo_;
+  ZoneSearch zone_;
 };
 
 class MaskStage final : public Stage {
  public:
-  MaskStage(ThresholdFunction thresholds, const StereoParams& stereo, const Backend& backend)
-      : thresholds_(std::move(thresholds)), invalid_(invalidDisparity(stereo)), backend_(backend) {
-    if (!thresholds_) throw Error("the mask stage needs a threshold function");
-  }
+  MaskStage(const StereoParams& stereo, const Backend& backend)
+      : invalid_(invalidDisparity(stereo)), backend_(backend) {}
   std::string name() const override { return "mask"; }
   void process(Frame& f) override {
     if (f.disparity.empty()) throw Error("no disparity: put the disparity stage before mask");
-    f.thresholds.assign(static_cast<std::size_t>(f.disparity.cols), 0);
-    thresholds_(f, f.thresholds);
     if (f.thresholds.size() != static_cast<std::size_t>(f.disparity.cols))
-      throw Error("the threshold function gave " + std::to_string(f.thresholds.size()) +
-                  " thresholds for " + std::to_string(f.disparity.cols) + " columns");
+      throw Error("the mask needs one threshold per column (" + std::to_string(f.disparity.cols) +
+                  "), the frame has " + std::to_string(f.thresholds.size()) +
+                  ": give the rectify stage a threshold function");
     f.mask.create(f.disparity.size(), CV_8UC1);
     horopterMask(viewOf(f.disparity), f.thresholds, invalid_, mutableViewOf(f.mask), {}, {},
                  backend_);
   }
 
  private:
-  ThresholdFunction thresholds_;
   std::int16_t invalid_;
   const Backend& backend_;
 };
 
 }  // namespace
 
-std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify) {
-  return std::make_unique<RectifyStage>(std::move(rectify));
+std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify, ThresholdFunction thresholds) {
+  return std::make_unique<RectifyStage>(std::move(rectify), std::move(thresholds));
 }
 
 std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo, const MedianParams& median,
-                                          const Backend& backend, int threads) {
+                                          const Backend& backend, int threads,
+                                          const ZoneSearch& zone) {
   if (backend.name.rfind("opencl", 0) == 0)
-    return std::make_unique<OpenClDisparityStage>(stereo, median, backend.name, threads);
-  return std::make_unique<DisparityStage>(stereo, median, backend, threads);
+    return std::make_unique<OpenClDisparityStage>(stereo, median, backend.name, threads, zone);
+  return std::make_unique<DisparityStage>(stereo, median, backend, threads, zone);
 }
 
-std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds, const StereoParams& stereo,
-                                     const Backend& backend) {
-  return std::make_unique<MaskStage>(std::move(thresholds), stereo, backend);
+std::unique_ptr<Stage> makeMaskStage(const StereoParams& stereo, const Backend& backend) {
+  return std::make_unique<MaskStage>(stereo, backend);
 }
 
 ThresholdFunction fixationDisparityThresholds(const StereoParams& stereo,
@@ -145,11 +170,11 @@ ThresholdFunction fixationDisparityThresholds(const StereoParams& stereo,
     throw Error("the focal length must be a positive number of pixels");
   return [fixation, focalPx](const Frame& f, std::vector<std::int16_t>& out) {
     RectifiedGeometry g;
-    g.focalPx = focalPx.value_or(f.disparity.cols);
-    g.cx = (f.disparity.cols - 1) / 2.0;
-    g.cy = (f.disparity.rows - 1) / 2.0;
+    g.focalPx = focalPx.value_or(f.leftGrey.cols);
+    g.cx = (f.leftGrey.cols - 1) / 2.0;
+    g.cy = (f.leftGrey.rows - 1) / 2.0;
     g.baseline = 1.0;  // thresholds in pixels do not depend on the unit
-    out = horopterThresholds(g, f.disparity.cols, fixationFromDisparity(g, g.cx, fixation));
+    out = horopterThresholds(g, f.leftGrey.cols, fixationFromDisparity(g, g.cx, fixation));
   };
 }
 

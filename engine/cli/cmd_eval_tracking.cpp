@@ -185,7 +185,8 @@ int runEvalTracking(Args& args) {
     std::cout << kEvalTrackingHelpStart << optionFlagsHelp(detectorOptions(), defaults.detector)
               << optionFlagsHelp(electionOptions(), defaults.tracker.election)
               << optionFlagsHelp(trackerOptions(), defaults.tracker)
-              << optionFlagsHelp(headControlOptions(), defaults.head) << kEvalTrackingHelpEnd;
+              << optionFlagsHelp(headControlOptions(), defaults.head)
+              << optionFlagsHelp(zoneSearchOptions(), defaults.zoneSearch) << kEvalTrackingHelpEnd;
     return 0;
   }
   TrialOptions base;
@@ -209,6 +210,7 @@ int runEvalTracking(Args& args) {
   base.tracker.election = parseOptionFlags(args, electionOptions(), base.tracker.election);
   base.tracker = parseOptionFlags(args, trackerOptions(), base.tracker);
   base.head = parseOptionFlags(args, headControlOptions(), base.head);
+  base.zoneSearch = parseOptionFlags(args, zoneSearchOptions(), base.zoneSearch);
   if (args.flag("--frame-hands")) base.head.frameHands = true;
   if (args.flag("--no-follow-head-turns")) base.followHeadTurns = false;
   if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
@@ -310,7 +312,8 @@ int runEvalTracking(Args& args) {
     out["options"] = Json{{"detector", optionsJson(detectorOptions(), base.detector)},
                           {"election", optionsJson(electionOptions(), base.tracker.election)},
                           {"tracker", optionsJson(trackerOptions(), base.tracker)},
-                          {"head_control", optionsJson(headControlOptions(), base.head)}};
+                          {"head_control", optionsJson(headControlOptions(), base.head)},
+                          {"zone_search", optionsJson(zoneSearchOptions(), base.zoneSearch)}};
     writeJsonLine(detail::jsonText(out));
   } else {
     std::printf("%d trials (seeds %lld-%lld, %s), %d frames each at %dx%d, head control %s\n",

@@ -138,6 +138,7 @@ RunJob parseRun(Args& args) {
   c.capture.maxSkewMs = args.doubleValue("--max-skew-ms", c.capture.maxSkewMs);
   c.stereo = parseStereoFlags(args, c.stereo);
   c.median = parseMedianFlags(args, c.median);
+  c.zoneSearch = parseOptionFlags(args, zoneSearchOptions(), c.zoneSearch);
   c.backend = args.stringValue("--backend", c.backend);
   c.inFlight = args.intValue("--in-flight", c.inFlight);
   // With frames in flight, capture and the other stages keep a core busy
@@ -294,7 +295,8 @@ class Output {
   std::int64_t lastIndex_ = 0;
 };
 
-void printSummary(const RunSummary& s, const RunJob& job, const std::string& backendName) {
+void printSummary(const RunSummary& s, const RunJob& job, const std::string& backendName,
+                  double meanSearched) {
   std::printf("%lld frames in %.2f s: %.1f frames/s end to end, latency %.1f ms (max %.1f)",
               static_cast<long long>(s.completed), s.seconds, s.fps(), s.meanLatencyMs,
               s.maxLatencyMs);
@@ -302,6 +304,9 @@ void printSummary(const RunSummary& s, const RunJob& job, const std::string& bac
   std::printf("\n%d frame(s) in flight, %s mode, backend %s, %d thread(s)%s\n", job.config.inFlight,
               job.config.live ? "live" : "offline", backendName.c_str(), job.config.threads,
               s.stoppedByRequest ? ", stopped by request" : "");
+  if (job.config.zoneSearch.enabled && meanSearched > 0)
+    std::printf("zone search: %.1f of %d disparities searched per frame on average\n", meanSearched,
+                job.config.stereo.numDisparities);
   std::printf("%-28s %8s %10s\n", "stage", "ms/frame", "frames/s");
   for (const auto& st : s.stages)
     std::printf("%-28s %8.2f %10.1f\n", st.name.c_str(), st.meanMs, st.fps());
@@ -313,7 +318,9 @@ int runPipeline(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
     const ElectionOptions election;
     std::cout << kRunHelpStart << optionFlagsHelp(electionOptions(), election) << kRunHelpEnd
-              << stereoFlagsHelp(StereoParams{}, MedianParams{});
+              << stereoFlagsHelp(StereoParams{}, MedianParams{})
+              << "Zone-limited matching (each frame searches only where the zone can be):\n"
+              << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{});
     return 0;
   }
   RunJob job = parseRun(args);
@@ -334,9 +341,15 @@ int runPipeline(Args& args) {
       job.framesGiven ? job.frames : (c.source == "synthetic" ? job.synthetic.frames : -1);
   Output output(job, expected);
   std::uint64_t digest = 0;
+  double searched = 0;  // disparities searched, summed over the frames
+  std::int64_t matched = 0;
   PipelineHooks hooks;
-  hooks.onFrame = [&output, &digest](const Frame& f) {
+  hooks.onFrame = [&output, &digest, &searched, &matched](const Frame& f) {
     digest = foldDigest(digest, frameDigest(f));
+    if (!f.disparity.empty()) {
+      searched += f.searchRange.numDisparities;
+      ++matched;
+    }
     output(f);
   };
   hooks.stopRequested = &gInterrupted;
@@ -391,13 +404,16 @@ int runPipeline(Args& args) {
   // same digest from Python and the C API (tests/app/pipeline_parity_test).
   detail::Json summaryObject = detail::Json::parse(summaryJson(summary));
   summaryObject["frames_digest"] = digestText(digest);
+  if (matched > 0)
+    summaryObject["mean_searched_disparities"] = detail::jsonNumber(searched / matched, 2);
+  summaryObject["zone_search"] = c.zoneSearch.enabled != 0;
   const std::string json = detail::jsonText(summaryObject);
   detail::writeFile(job.outDir + "/summary.json", json + "\n", "run summary");
   if (!job.trace.empty()) writeChromeTrace(summary, job.trace);
   if (job.json)
     std::printf("%s\n", json.c_str());
   else
-    printSummary(summary, job, backend.name);
+    printSummary(summary, job, backend.name, matched > 0 ? searched / matched : 0);
   return 0;
 }
 

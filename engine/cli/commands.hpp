@@ -19,6 +19,7 @@ int runTrain(Args& args);
 int runClassify(Args& args);
 int runEvalInteraction(Args& args);
 int runEvalTracking(Args& args);
+int runEvalZone(Args& args);
 int runProfile(Args& args);
 
 }  // namespace horopter::cli

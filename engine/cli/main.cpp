@@ -19,6 +19,8 @@ const char* kUsage =
     "  disparity     disparity, cleanup, median and horopter mask of a rectified pair\n"
     "                (--example: Middlebury's Aloe pair from opencv-doc)\n"
     "  eval-stereo   accuracy against ground truth, cv::StereoBM beside us (--peer opencv)\n"
+    "  eval-zone     what zone-limited matching (run --zone-search 1) changes in the zone\n"
+    "                mask, against the full range and the true zone\n"
     "  eval-tracking tracker loss, false positives and frames/s on synthetic trials, detection\n"
     "                inside the horopter's region vs over the full image\n"
     "  train         the movement classifier from synthetic labelled sequences -> model file\n"
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
     if (command == "disparity") return runDisparity(args);
     if (command == "eval-stereo") return runEvalStereo(args);
     if (command == "eval-tracking") return runEvalTracking(args);
+    if (command == "eval-zone") return runEvalZone(args);
     if (command == "train") return runTrain(args);
     if (command == "classify") return runClassify(args);
     if (command == "eval-interaction") return runEvalInteraction(args);

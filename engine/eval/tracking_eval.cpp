@@ -180,6 +180,7 @@ TrialResult runTrackingTrial(const TrialOptions& o, DetectionScope scope,
   c.inFlight = o.inFlight;
   c.stereo = o.stereo;
   c.median = o.median;
+  c.zoneSearch = o.zoneSearch;
   c.backend = o.backend;
   c.threads = o.threads;
   c.detection = scope;

@@ -17,6 +17,14 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// Rewrites every `from` in the rows of an S16C1 map as `to`.
+void replaceValue(const ImageView& map, std::int16_t from, std::int16_t to, RowRange rows) {
+  for (int y = rows.begin; y < rows.end; ++y) {
+    std::int16_t* row = map.row<std::int16_t>(y);
+    std::replace(row, row + map.width, from, to);
+  }
+}
+
 }  // namespace
 
 StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
@@ -56,6 +64,13 @@ void StereoFrontend::forEachStripe(int height, const std::function<void(RowRange
 
 const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
                                               const ConstImageView& right) {
+  return computeDisparity(left, right, fullRange(stereo_));
+}
+
+const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
+                                              const ConstImageView& right, SearchRange range) {
+  checkSearchRange(stereo_, range);
+  const StereoParams params = withRange(stereo_, range);
   checkView(left, PixelType::U8C1, "left image");
   checkView(right, PixelType::U8C1, "right image");
   checkSameSize(left, "left image", right, "right image");
@@ -63,38 +78,42 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   timings_ = {};
 
   auto start = Clock::now();
-  const bool xsobel = stereo_.preFilterType == PreFilterType::XSobel;
-  const bool wantTexture = stereo_.textureThreshold > 0;
+  const bool xsobel = params.preFilterType == PreFilterType::XSobel;
+  const bool wantTexture = params.textureThreshold > 0;
   ConstImageView matchLeft = left;
   ConstImageView matchRight = right;
   const int height = left.height;
   if (xsobel) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, stereo_.preFilterCap, leftFiltered_.view(),
+      prefilterXSobel(left, params.preFilterCap, leftFiltered_.view(),
                       wantTexture ? texture_.view() : ImageView{}, *backend_, rows);
-      prefilterXSobel(right, stereo_.preFilterCap, rightFiltered_.view(), {}, *backend_, rows);
+      prefilterXSobel(right, params.preFilterCap, rightFiltered_.view(), {}, *backend_, rows);
     });
     matchLeft = leftFiltered_.view();
     matchRight = rightFiltered_.view();
   } else if (wantTexture) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, stereo_.preFilterCap, {}, texture_.view(), *backend_, rows);
+      prefilterXSobel(left, params.preFilterCap, {}, texture_.view(), *backend_, rows);
     });
   }
   timings_.prefilter = msSince(start);
 
   start = Clock::now();
   forEachStripe(height, [&](RowRange rows) {
-    matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, stereo_,
+    matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, params,
                 clean_.view(), winnerRight_.view(), *backend_, rows);
   });
   timings_.match = msSince(start);
 
   start = Clock::now();
   forEachStripe(height, [&](RowRange rows) {
-    leftRightCheck(clean_.view(), winnerRight_.view(), stereo_, *backend_, rows);
+    leftRightCheck(clean_.view(), winnerRight_.view(), params, *backend_, rows);
   });
-  filterSpeckles(clean_.view(), stereo_, *backend_);
+  filterSpeckles(clean_.view(), params, *backend_);
+  if (range.minDisparity != stereo_.minDisparity)  // another invalid marker
+    forEachStripe(height, [&](RowRange rows) {
+      replaceValue(clean_.view(), invalidDisparity(params), invalidDisparity(stereo_), rows);
+    });
   timings_.cleanup = msSince(start);
 
   if (median_.kernelSize > 0) {
@@ -105,6 +124,7 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
     });
     timings_.median = msSince(start);
   }
+  lastRange_ = range;
   return disparity();
 }
 

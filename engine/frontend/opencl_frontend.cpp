@@ -39,6 +39,7 @@ struct OpenClFrontend::Slot {
   Ticket ticket = 0;
   bool used = false, done = false, onDevice = false;
   ConstImageView left, right;
+  SearchRange range;
   Image out;
 };
 
@@ -82,7 +83,7 @@ void OpenClFrontend::fallBack(const std::string& why) {
 }
 
 void OpenClFrontend::computeOnCpu(Slot& slot) {
-  const Image& d = cpu_->frontend.computeDisparity(slot.left, slot.right);
+  const Image& d = cpu_->frontend.computeDisparity(slot.left, slot.right, slot.range);
   if (slot.out.width() != d.width() || slot.out.height() != d.height())
     slot.out = Image(d.width(), d.height(), PixelType::S16C1);
   for (int y = 0; y < d.height(); ++y)
@@ -101,6 +102,12 @@ OpenClFrontend::Slot& OpenClFrontend::slotOf(Ticket ticket) {
 
 OpenClFrontend::Ticket OpenClFrontend::submit(const ConstImageView& left,
                                               const ConstImageView& right) {
+  return submit(left, right, fullRange(stereo_));
+}
+
+OpenClFrontend::Ticket OpenClFrontend::submit(const ConstImageView& left,
+                                              const ConstImageView& right, SearchRange range) {
+  checkSearchRange(stereo_, range);
   checkView(left, PixelType::U8C1, "left image");
   checkView(right, PixelType::U8C1, "right image");
   checkSameSize(left, "left image", right, "right image");
@@ -115,11 +122,13 @@ OpenClFrontend::Ticket OpenClFrontend::submit(const ConstImageView& left,
   slot.done = false;
   slot.left = left;
   slot.right = right;
+  slot.range = range;
   if (slot.out.width() != left.width || slot.out.height() != left.height)
     slot.out = Image(left.width, left.height, PixelType::S16C1);
   if (!cpu_) {
     try {
-      pipeline_->submit(static_cast<int>(ticket % slots_.size()), left, right, slot.out);
+      pipeline_->submit(static_cast<int>(ticket % slots_.size()), left, right,
+                        withRange(stereo_, range), slot.out);
       slot.onDevice = true;
       return ticket;
     } catch (const Error& e) {
@@ -136,7 +145,7 @@ const Image& OpenClFrontend::wait(Ticket ticket) {
   if (!cpu_) {
     try {
       pipeline_->wait(static_cast<int>(ticket % slots_.size()), profile_);
-      slot.done = true;
+      finish(slot);
       return slot.out;
     } catch (const Error& e) {
       fallBack(e.what());
@@ -148,9 +157,28 @@ const Image& OpenClFrontend::wait(Ticket ticket) {
   return slot.out;
 }
 
+// The device ran the chain with the slot's range: its invalid pixels carry
+// that range's marker, rewritten here as the configured range's (the CPU
+// path's front end does the same before its median).
+void OpenClFrontend::finish(Slot& slot) {
+  slot.done = true;
+  if (slot.range.minDisparity == stereo_.minDisparity) return;
+  const std::int16_t from = invalidDisparity(withRange(stereo_, slot.range));
+  const std::int16_t to = invalidDisparity(stereo_);
+  for (int y = 0; y < slot.out.height(); ++y) {
+    std::int16_t* row = slot.out.row<std::int16_t>(y);
+    std::replace(row, row + slot.out.width(), from, to);
+  }
+}
+
 const Image& OpenClFrontend::computeDisparity(const ConstImageView& left,
                                               const ConstImageView& right) {
   return wait(submit(left, right));
+}
+
+const Image& OpenClFrontend::computeDisparity(const ConstImageView& left,
+                                              const ConstImageView& right, SearchRange range) {
+  return wait(submit(left, right, range));
 }
 
 }  // namespace horopter

@@ -36,7 +36,8 @@ Pipeline::Pipeline(const std::string&, const StereoParams&, const MedianParams&,
       "headers and loader installed)");
 }
 Pipeline::~Pipeline() = default;
-void Pipeline::submit(int, const ConstImageView&, const ConstImageView&, Image&) {}
+void Pipeline::submit(int, const ConstImageView&, const ConstImageView&, const StereoParams&,
+                      Image&) {}
 void Pipeline::wait(int, std::vector<OpenClStageTime>&) {}
 const std::string& Pipeline::deviceName() const {
   static const std::string none = "none";

@@ -33,6 +33,7 @@ struct Pipeline::Impl {
     SadScratch sad;
     Image clean;  // the left-right checked map, for the CPU speckle filter
     Image* out = nullptr;
+    StereoParams stereo;  // this frame's (its search range)
     int width = 0, height = 0;
     bool pending = false;
     Events events;
@@ -44,7 +45,6 @@ struct Pipeline::Impl {
   };
 
   Device* device = nullptr;
-  StereoParams stereo;
   MedianParams median;
   cl_command_queue queue = nullptr;
   std::unique_ptr<Kernels> kernels;
@@ -61,7 +61,6 @@ Pipeline::Pipeline(const std::string& backendName, const StereoParams& stereo,
     throw Error("'" + backendName + "' is not an OpenCL device here");
   Impl& s = *impl_;
   s.device = devices()[static_cast<std::size_t>(index)];
-  s.stereo = stereo;
   s.median = median;
   s.kernels = std::make_unique<Kernels>(*s.device);  // builds the program (or throws)
   s.queue = createQueue(*s.device);
@@ -81,7 +80,7 @@ const std::string& Pipeline::deviceName() const {
 }
 
 void Pipeline::submit(int index, const ConstImageView& left, const ConstImageView& right,
-                      Image& out) {
+                      const StereoParams& stereo, Image& out) {
   Impl& s = *impl_;
   Impl::Slot& slot = s.slots[static_cast<std::size_t>(index)];
   if (g_failEnqueue)
@@ -93,7 +92,8 @@ void Pipeline::submit(int index, const ConstImageView& left, const ConstImageVie
   slot.events.clear();
   slot.names.clear();
   const int w = left.width, h = left.height;
-  const StereoParams& p = s.stereo;
+  validate(stereo);
+  const StereoParams& p = stereo;
   cl_context ctx = s.device->context();
   cl_command_queue q = s.queue;
   const std::size_t u8 = static_cast<std::size_t>(w) * h, s16 = u8 * 2;
@@ -122,6 +122,7 @@ void Pipeline::submit(int index, const ConstImageView& left, const ConstImageVie
     enqueueLeftRightCheck(q, s.kernels->lrCheck.get(), d, wr, w, p, all,
                           slot.add("left-right check"));
   slot.out = &out;
+  slot.stereo = stereo;
   slot.width = w;
   slot.height = h;
   if (p.speckleWindowSize > 0) {
@@ -152,10 +153,10 @@ void Pipeline::wait(int index, std::vector<OpenClStageTime>& times) {
         "waiting for the frame");
   for (std::size_t i = 0; i < events.size(); ++i)
     times.push_back({slot.names[i], eventMs(events[i]), true});
-  if (s.stereo.speckleWindowSize == 0) return;
+  if (slot.stereo.speckleWindowSize == 0) return;
 
   const auto start = std::chrono::steady_clock::now();
-  const Backend& cpu = filterSpecklesOnCpu(slot.clean.view(), s.stereo);
+  const Backend& cpu = filterSpecklesOnCpu(slot.clean.view(), slot.stereo);
   times.push_back(
       {"speckle filter (CPU, " + cpu.name + ")",
        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
@@ -174,7 +175,7 @@ void Pipeline::wait(int index, std::vector<OpenClStageTime>& times) {
   Events more;
   writeRows(s.queue, d, slot.clean.view(), 0, h, false, more.add());
   enqueueMedian(s.queue, s.kernels->median.get(), d, m, w, h, s.median.kernelSize,
-                effectiveMinValid(s.median), invalidDisparity(s.stereo), {0, h}, more.add());
+                effectiveMinValid(s.median), invalidDisparity(slot.stereo), {0, h}, more.add());
   readRows(s.queue, m, out, 0, h, true, more.add());
   const char* names[] = {"upload cleaned", "median", "download median"};
   for (std::size_t i = 0; i < more.list().size(); ++i)

@@ -24,8 +24,11 @@ class Pipeline {
   Pipeline& operator=(const Pipeline&) = delete;
 
   // Enqueues the frame into `slot` without waiting; `out` (the frame's
-  // size, S16C1) receives the final disparity by wait(slot).
-  void submit(int slot, const ConstImageView& left, const ConstImageView& right, Image& out);
+  // size, S16C1) receives the final disparity by wait(slot). `stereo`: the
+  // constructor's parameters, or the same over another search range (its
+  // invalid marker is then that range's).
+  void submit(int slot, const ConstImageView& left, const ConstImageView& right,
+              const StereoParams& stereo, Image& out);
   // Completes the slot's frame (the CPU speckle filter and the median when
   // speckles are on) and fills `times` with its stage times.
   void wait(int slot, std::vector<OpenClStageTime>& times);

@@ -167,10 +167,11 @@ TEST(Capture, PipelineFrontEndEqualsTheFrontEndCalledDirectly) {
     std::vector<cv::Mat> masks;
     options.onFrame = [&](const Frame& f) { masks.push_back(f.mask); };
     Pipeline pipeline(options);
-    pipeline.add(makeRectifyStage())
+    pipeline
+        .add(makeRectifyStage(
+            {}, [&](const Frame&, std::vector<std::int16_t>& out) { out = thresholds; }))
         .add(makeDisparityStage(stereo, median, scalarBackend(), 2))
-        .add(makeMaskStage([&](const Frame&, std::vector<std::int16_t>& out) { out = thresholds; },
-                           stereo, scalarBackend()));
+        .add(makeMaskStage(stereo, scalarBackend()));
     auto source = frameSourceOf(openSource("dir:" + dir.string(), {}));
     pipeline.run(*source);
     ASSERT_EQ(masks.size(), 4u);
@@ -197,13 +198,13 @@ TEST(Capture, SyntheticRunIsDeterministicAcrossThreadsAndDepth) {
     std::vector<cv::Mat> masks;
     options.onFrame = [&](const Frame& f) { masks.push_back(f.mask); };
     Pipeline pipeline(options);
-    pipeline.add(makeRectifyStage())
+    pipeline
+        .add(makeRectifyStage({},
+                              [](const Frame& f, std::vector<std::int16_t>& out) {
+                                out.assign(static_cast<std::size_t>(f.leftGrey.cols), 16 * 24);
+                              }))
         .add(makeDisparityStage(stereo, MedianParams{}, backend, threads))
-        .add(makeMaskStage(
-            [](const Frame& f, std::vector<std::int16_t>& out) {
-              out.assign(static_cast<std::size_t>(f.disparity.cols), 16 * 24);
-            },
-            stereo, backend));
+        .add(makeMaskStage(stereo, backend));
     sim::SyntheticSource source(synth::SceneOptions{}, 5);
     pipeline.run(source);
     return masks;

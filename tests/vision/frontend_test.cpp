@@ -1,6 +1,7 @@
 // StereoFrontend: the chain equals the kernels called one by one, buffers are
 // reused correctly across frames and sizes, masks and segmentation.
 #include <unistd.h>
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,7 @@
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/geometry.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "horopter/vision/zone_search.hpp"
 #include "io/disparity_images.hpp"
 #include "test_support.hpp"
 
@@ -116,6 +118,51 @@ TEST(Frontend, ChainEqualsKernelsOneByOne) {
       EXPECT_GE(ms, 0);
     EXPECT_DOUBLE_EQ(t.total(), t.prefilter + t.match + t.cleanup + t.median + t.mask);
   }
+}
+
+// Rewrites `from` as `to` in an S16C1 image.
+void replaceValue(TestImage& map, std::int16_t from, std::int16_t to) {
+  const ImageView v = map.view();
+  for (int y = 0; y < v.height; ++y) {
+    std::int16_t* row = v.row<std::int16_t>(y);
+    std::replace(row, row + v.width, from, to);
+  }
+}
+
+// Zone-limited matching: a search range runs the chain over that range, and
+// invalid pixels carry the configured range's marker.
+TEST(Frontend, SearchRangeRunsTheChainOverThatRange) {
+  const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 40, 12}, 37);
+  const StereoParams p;  // 0..63
+  for (const Setting& s : settings()) {
+    if (s.p.minDisparity != 0 || s.p.numDisparities != 64) continue;
+    for (const SearchRange range : {SearchRange{16, 48}, SearchRange{32, 32}, SearchRange{8, 80}}) {
+      SCOPED_TRACE(s.what + std::string(", range from ") + std::to_string(range.minDisparity));
+      StereoFrontend frontend(s.p, s.m);
+      const Image& out = frontend.computeDisparity(pair.left.view(), pair.right.view(), range);
+      Chain want = runKernels(pair.left.view(), pair.right.view(), withRange(s.p, range), s.m);
+      const std::int16_t rangeInvalid = invalidDisparity(withRange(s.p, range));
+      replaceValue(want.cleaned, rangeInvalid, invalidDisparity(s.p));
+      replaceValue(want.final, rangeInvalid, invalidDisparity(s.p));
+      EXPECT_TRUE(sameImage(want.cleaned.view(), frontend.cleanedDisparity().view()));
+      EXPECT_TRUE(sameImage(want.final.view(), out.view()));
+      EXPECT_EQ(frontend.lastRange(), range);
+      int valid = 0;
+      for (int y = 0; y < out.height(); ++y)
+        for (int x = 0; x < out.width(); ++x) {
+          const int d = out.row<std::int16_t>(y)[x];
+          if (d == invalidDisparity(s.p)) continue;
+          ++valid;
+          EXPECT_GE(d, range.minDisparity * kDisparityScale) << x << "," << y;
+        }
+      EXPECT_GT(valid, 1000);
+    }
+  }
+  StereoFrontend frontend(p, MedianParams{});
+  frontend.computeDisparity(pair.left.view(), pair.right.view());
+  EXPECT_EQ(frontend.lastRange(), fullRange(p));
+  EXPECT_THROW(frontend.computeDisparity(pair.left.view(), pair.right.view(), {-16, 64}), Error);
+  EXPECT_THROW(frontend.computeDisparity(pair.left.view(), pair.right.view(), {16, 40}), Error);
 }
 
 TEST(Frontend, StridedAndRoiInputsGiveTheSameResult) {

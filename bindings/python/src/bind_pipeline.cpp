@@ -19,6 +19,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/movement/movement_classifier.hpp"
 #include "horopter/sim/synthetic_source.hpp"
+#include "pipeline_args.hpp"
 #include "stereo_args.hpp"
 
 namespace horopter::python {
@@ -157,7 +158,7 @@ void bindPipeline(py::module_& m) {
                synthetic.frames = static_cast<int>(*frames);
              }
              c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
-             applyStereoKwargs(c.stereo, kwargs);
+             applyPipelineKwargs(c, kwargs);
              c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
              c.backend = backend;
              c.threads = threads;
@@ -199,12 +200,14 @@ void bindPipeline(py::module_& m) {
            "Pipeline(source='synthetic', frames=None, params=None, median=None, "
            "backend='auto', threads=1, in_flight=3, live=False, size=None, seed=1, calib='', "
            "fixation=1.5, fixation_disparity=None, focal_px=None, detect=None, "
-           "movement_model=None, head_control=True, **stereo_kwargs): the pipeline of "
+           "movement_model=None, head_control=True, **options): the pipeline of "
            "`horopter run` for the same configuration. detect='region' or 'full' adds face and "
            "hand detection and tracking (frame['detections'], ['tracking'], ['body']); on the "
            "synthetic scene (offline, no calib) the head control then turns the cameras "
            "(head_control=False: they stay still); "
            "movement_model (a MovementModel) then adds movement analysis (frame['movement']). "
+           "options: StereoParams fields (numDisparities=64, ...) and the tuning options of "
+           "horopter.tuning_options() by name (zoneSearch=1, trackDepthGatePx=..., ...). "
            "Sources: "
            "synthetic, dir:PATH, video:LEFT,RIGHT, camera:DEV,DEV, sbs:DEV (as horopter run)")
       .def("__iter__", [](py::object self) { return self; })

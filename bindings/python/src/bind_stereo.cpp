@@ -147,15 +147,18 @@ void bindStereo(py::module_& m) {
         const ElectionOptions election;
         const TrackerOptions tracker;
         const HeadControlOptions head;
+        const ZoneSearch zone;
         py::dict out;
         out["detector"] = tuningTable(detectorOptions(), detector);
         out["election"] = tuningTable(electionOptions(), election);
         out["tracker"] = tuningTable(trackerOptions(), tracker);
         out["head_control"] = tuningTable(headControlOptions(), head);
+        out["zone_search"] = tuningTable(zoneSearchOptions(), zone);
         return out;
       },
-      "The detector's, election's, tracker's and head control's tuning options as declared "
-      "once in the library: name, CLI flag, unit, range, default, help");
+      "The detector's, election's, tracker's, head control's and zone search's tuning options "
+      "as declared once in the library: name, CLI flag, unit, range, default, help; "
+      "Pipeline takes each by name");
   // The integer parameters from their table (horopter/kernels/stereo_params.hpp).
   for (const IntOption<StereoParams>& o : stereoOptions()) {
     const auto member = o.member;

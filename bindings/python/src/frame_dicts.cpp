@@ -194,6 +194,8 @@ py::dict frameDict(const Frame& frame) {
   py::array_t<std::int16_t> thresholds(static_cast<py::ssize_t>(frame.thresholds.size()));
   std::copy(frame.thresholds.begin(), frame.thresholds.end(), thresholds.mutable_data());
   d["thresholds"] = thresholds;
+  d["search_range"] =
+      py::make_tuple(frame.searchRange.minDisparity, frame.searchRange.numDisparities);
   d["body"] = bodyDict(frame.body);
   const synth::FrameTruth* truth = sim::truthOf(frame);
   d["truth"] = truth ? py::object(truthDict(*truth)) : py::none();

@@ -113,7 +113,7 @@ def test_stereo_options_come_from_the_librarys_table():
 
 def test_tuning_options_come_from_the_librarys_tables():
     tables = horopter.tuning_options()
-    assert set(tables) == {"detector", "election", "tracker", "head_control"}
+    assert set(tables) == {"detector", "election", "tracker", "head_control", "zone_search"}
     flags = set()
     for table in tables.values():
         for o in table:

@@ -38,6 +38,41 @@ def test_pipeline_results_equal_the_matcher_on_the_same_frame():
         np.testing.assert_array_equal(mask, f["mask"])
 
 
+def test_zone_search_matches_only_where_the_zone_can_be():
+    """zoneSearch=1: each frame searches from below its smallest threshold up
+    to the full range's top, exactly as a matcher over that range, with the
+    full range's invalid marker."""
+    with horopter.Pipeline("synthetic", frames=3, backend="auto", zoneSearch=1,
+                           zoneMarginPx=4) as pipeline:  # 640x480, the default rig
+        frames = list(pipeline)
+    assert len(frames) == 3
+    for f in frames:
+        lowest = -(-(int(f["thresholds"].min()) - 8) // 16)  # ceil((t - 8) / 16)
+        bottom = min(max(lowest - 4, 0), 48)
+        count = -(-(64 - bottom) // 16) * 16
+        assert f["search_range"] == (64 - count, count)
+        assert count < 64, "the default rig's zone needs less than the full range"
+        matcher = horopter.StereoMatcher(minDisparity=64 - count, numDisparities=count,
+                                         backend="scalar")
+        expected = matcher.compute(f["left_grey"], f["right_grey"])
+        expected[expected == 16 * (64 - count - 1)] = -16
+        np.testing.assert_array_equal(expected, f["disparity"])
+    with pytest.raises(horopter.Error, match="zoneMarginPx"):
+        horopter.Pipeline("synthetic", frames=1, zoneSearch=1, zoneMarginPx=999)
+    with pytest.raises(TypeError, match="unknown Pipeline option 'zoneSerch'"):
+        horopter.Pipeline("synthetic", frames=1, zoneSerch=1)
+    with pytest.raises(TypeError, match="zoneSearch must be an int"):
+        horopter.Pipeline("synthetic", frames=1, zoneSearch=1.5)
+
+
+def test_tuning_options_are_pipeline_keywords():
+    for table in horopter.tuning_options().values():
+        for o in table:
+            value = o["default"] if not o["integer"] else int(o["default"])
+            horopter.Pipeline("synthetic", frames=1, size=(96, 72), numDisparities=16,
+                              **{o["name"]: value}).close()
+
+
 def test_stopping_early_and_errors():
     pipeline = horopter.Pipeline("synthetic", frames=50, size=(96, 72), numDisparities=16)
     first = next(pipeline)

@@ -63,6 +63,7 @@ struct HOROPTER_API PipelineConfig {
   std::string backend = "auto";  // scalar, avx2, opencl..., auto
   int threads = 1;               // the disparity stage's threads, 1..256
   ZoneOptions zone;
+  ZoneSearch zoneSearch;  // each frame's search range from its zone (off: the full range)
   StopAfter stopAfter = StopAfter::Everything;
   // Interaction. Detection over the horopter's region or the full image;
   // nothing: no detection, tracking or movement.

@@ -11,29 +11,38 @@
 #include "horopter/app/frame.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/stereo_params.hpp"
+#include "horopter/vision/zone_search.hpp"
 
 namespace horopter {
 
-// Grey rectified views for the front end. With a `rectify` function (maps
-// computed once, e.g. from a calibration), it is applied to both captured
-// images first; without one the source is taken as rectified already.
+// The zone's thresholds for a frame (one per column of the rectified
+// views, 1/16 px): a function of the frame, since the head's pose at
+// capture time makes the horopter dynamic. `out` comes sized to the width.
+using ThresholdFunction = std::function<void(const Frame& frame, std::vector<std::int16_t>& out)>;
+
+// Grey rectified views for the front end, and the frame's zone. With a
+// `rectify` function (maps computed once, e.g. from a calibration), it is
+// applied to both captured images first; without one the source is taken
+// as rectified already. With `thresholds`, Frame::thresholds is filled
+// here, before the disparity, so that the zone can set the search range:
+// both are the rig's geometry at capture time.
 using RectifyFunction = std::function<void(const cv::Mat& left, const cv::Mat& right,
                                            cv::Mat& leftOut, cv::Mat& rightOut)>;
-HOROPTER_API std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify = {});
+HOROPTER_API std::unique_ptr<Stage> makeRectifyStage(RectifyFunction rectify = {},
+                                                     ThresholdFunction thresholds = {});
 
 // The disparity of Frame::leftGrey/rightGrey (cleaned up, median-filtered)
 // into Frame::disparity, on `threads` threads of the stage's own pool. An
 // OpenCL backend runs the device-resident OpenClFrontend (with its CPU
-// fallback; `threads` are then the fallback's).
+// fallback; `threads` are then the fallback's). With zone search on, each
+// frame searches zoneSearchRange() of its thresholds (the rectify stage's).
 HOROPTER_API std::unique_ptr<Stage> makeDisparityStage(const StereoParams& stereo,
                                                        const MedianParams& median,
-                                                       const Backend& backend, int threads);
+                                                       const Backend& backend, int threads,
+                                                       const ZoneSearch& zone = {});
 
-// Frame::thresholds from a function of the frame (the head's pose at capture
-// time makes the horopter dynamic), then Frame::mask from the disparity.
-using ThresholdFunction = std::function<void(const Frame& frame, std::vector<std::int16_t>& out)>;
-HOROPTER_API std::unique_ptr<Stage> makeMaskStage(ThresholdFunction thresholds,
-                                                  const StereoParams& stereo,
+// Frame::mask from the disparity and Frame::thresholds (the rectify stage's).
+HOROPTER_API std::unique_ptr<Stage> makeMaskStage(const StereoParams& stereo,
                                                   const Backend& backend);
 
 // Thresholds for a source that is rectified already and has no calibration:

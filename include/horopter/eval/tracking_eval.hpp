@@ -47,6 +47,7 @@ struct TrialOptions {
     return p;
   }();
   MedianParams median;
+  ZoneSearch zoneSearch;    // each frame's search range from its zone (off: the full range)
   bool headControl = true;  // closed loop; false: the head stays where it starts
   // The tracks move with the image when the head turns (the tracker is given
   // each frame's head pose; TrackerOptions::capturePose).

@@ -17,6 +17,7 @@
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/stereo_params.hpp"
+#include "horopter/vision/zone_search.hpp"
 
 namespace horopter {
 
@@ -40,6 +41,12 @@ class HOROPTER_API StereoFrontend {
   // Rectified U8C1 pair in, final disparity (S16C1, 1/16 px) out: prefilter,
   // matching, left-right check, speckles, then the median when enabled.
   const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right);
+  // The same over another search range (zone-limited matching: see
+  // zone_search.hpp): the chain runs with the range's minDisparity and
+  // numDisparities, and invalid pixels hold the configured range's marker.
+  // The range must not start below the configured minDisparity.
+  const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right,
+                                SearchRange range);
 
   // Horopter mask of the last disparity: one threshold per column (1/16 px,
   // see geometry.hpp). When `image` (U8C1 or U8C3) is given, segmented()
@@ -53,6 +60,7 @@ class HOROPTER_API StereoFrontend {
   const FrontendTimings& timings() const { return timings_; }
   const StereoParams& stereoParams() const { return stereo_; }
   const MedianParams& medianParams() const { return median_; }
+  SearchRange lastRange() const { return lastRange_; }  // the last frame's search range
   const Backend& backend() const { return *backend_; }
   int threads() const;
 
@@ -69,6 +77,7 @@ class HOROPTER_API StereoFrontend {
   Image clean_, winnerRight_, median_out_;
   Image mask_, segmented_;
   FrontendTimings timings_;
+  SearchRange lastRange_;
 };
 
 }  // namespace horopter

@@ -27,6 +27,7 @@
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/stereo_params.hpp"
+#include "horopter/vision/zone_search.hpp"
 
 namespace horopter {
 
@@ -59,11 +60,16 @@ class HOROPTER_API OpenClFrontend {
   // valid and unchanged until wait() for this ticket returns. With
   // `inFlight` frames pending, the oldest is completed first.
   Ticket submit(const ConstImageView& left, const ConstImageView& right);
+  // The same over another search range (zone-limited matching), as
+  // StereoFrontend::computeDisparity with a range.
+  Ticket submit(const ConstImageView& left, const ConstImageView& right, SearchRange range);
   // Blocks until the frame is done: its final disparity (S16C1, 1/16 px),
   // valid until `inFlight` more frames have been submitted.
   const Image& wait(Ticket ticket);
   // submit + wait.
   const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right);
+  const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right,
+                                SearchRange range);
 
   // Stage times of the last frame waited for on the device (empty on the CPU).
   const std::vector<OpenClStageTime>& profile() const { return profile_; }
@@ -77,6 +83,7 @@ class HOROPTER_API OpenClFrontend {
   struct Slot;
   void fallBack(const std::string& why);
   void computeOnCpu(Slot& slot);
+  void finish(Slot& slot);
   Slot& slotOf(Ticket ticket);
 
   StereoParams stereo_;

@@ -12,14 +12,16 @@
 #include <vector>
 
 #include "horopter/pipeline/scheduler.hpp"
+#include "horopter/vision/zone_search.hpp"
 
 namespace horopter {
 
 struct HOROPTER_API StereoFrame : ScheduledFrame {
   cv::Mat left, right;                   // as captured (BGR or grey)
   cv::Mat leftGrey, rightGrey;           // rectified, grey: the front end's input
-  cv::Mat disparity;                     // CV_16SC1, 1/16 px, after cleanup and median
   std::vector<std::int16_t> thresholds;  // horopter threshold per column (1/16 px)
+  cv::Mat disparity;                     // CV_16SC1, 1/16 px, after cleanup and median
+  SearchRange searchRange;               // the disparities the frame's matching searched
   cv::Mat mask;                          // CV_8UC1, 255 inside the zone
 };
 

@@ -31,6 +31,7 @@
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/geometry.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "horopter/vision/zone_search.hpp"
 #include "sad/sad.hpp"
 #include "test_support.hpp"
 
@@ -867,6 +868,67 @@ TEST_P(Conformance, FrontendOnSyntheticScenes) {
       compareFrontends(backend(), left.view(), right.view(), s.p, s.m, colour.view());
       CONFORM(left.canariesIntact(), "left input");
       CONFORM(right.canariesIntact(), "right input");
+    }
+  }
+}
+
+// Zone-limited matching (zone_search.hpp): the ranges the zone gives, from
+// the horopter thresholds of fixations across the range, searched by each
+// backend's front end, equal the reference front end over the same range.
+TEST_P(Conformance, FrontendZoneLimitedRanges) {
+  struct Setting {
+    int width, height;
+    StereoParams p;
+    ZoneSearch zone;
+  };
+  std::vector<Setting> settings;
+  {
+    StereoParams p;  // defaults: 0..63, block 9
+    ZoneSearch zone;
+    zone.enabled = 1;
+    settings.push_back({193, 41, p, zone});
+    zone.marginPx = 0;
+    zone.maxDisparity = 79;  // past the full range's top (near hands)
+    settings.push_back({161, 33, p, zone});
+    p.numDisparities = 96;
+    p.blockSize = 5;
+    zone.marginPx = 9;
+    zone.maxDisparity = 127;
+    settings.push_back({641, 17, p, zone});
+    p.minDisparity = -8;
+    p.numDisparities = 48;
+    zone.maxDisparity = 0;
+    zone.marginPx = 2;
+    settings.push_back({97, 29, p, zone});
+  }
+  int n = 0;
+  for (const Setting& s : settings) {
+    for (double fixation : {0.25, 0.5, 0.8}) {
+      const int top = largestDisparity(s.p, s.zone);
+      RectifiedGeometry g;
+      g.focalPx = s.width;
+      g.cx = (s.width - 1) / 2.0;
+      g.baseline = 1;
+      const double fixationPx = std::max(1.0, fixation * top);
+      const std::vector<std::int16_t> thresholds =
+          horopterThresholds(g, s.width, fixationFromDisparity(g, g.cx, fixationPx));
+      const SearchRange range = zoneSearchRange(s.p, thresholds, s.zone);
+      SCOPED_TRACE("width " + std::to_string(s.width) + ", range " +
+                   std::to_string(range.minDisparity) + " + " +
+                   std::to_string(range.numDisparities));
+      const StepScene scene{s.width / 4,  s.width * 3 / 4, 3,
+                            s.height - 3, top - 4,         std::max(s.p.minDisparity, 1) + 2};
+      const StereoPair pair = stepScenePair(s.width, s.height, scene, 900 + n++);
+      StereoFrontend ref(s.p, MedianParams{}, reference());
+      StereoFrontend test(s.p, MedianParams{}, backend());
+      ref.computeDisparity(pair.left.view(), pair.right.view(), range);
+      test.computeDisparity(pair.left.view(), pair.right.view(), range);
+      CONFORM(sameImage(ref.cleanedDisparity().view(), test.cleanedDisparity().view()),
+              "cleaned disparity");
+      CONFORM(sameImage(ref.disparity().view(), test.disparity().view()), "final disparity");
+      ref.computeMask(thresholds);
+      test.computeMask(thresholds);
+      CONFORM(sameImage(ref.mask().view(), test.mask().view()), "mask");
     }
   }
 }

@@ -87,6 +87,32 @@ TEST(OpenClFrontend, FramesInFlightEqualTheScalarFrontendInOrder) {
   }
 }
 
+// Zone-limited matching: frames in flight, each over its own search range,
+// equal the scalar front end over the same ranges (the invalid marker
+// rewritten as the configured range's).
+TEST(OpenClFrontend, EachFrameSearchesItsOwnRange) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(4);
+  const SearchRange ranges[] = {{16, 48}, {0, 64}, {32, 32}, {8, 48}};
+  for (const Setting& s : settings()) {
+    if (s.stereo.minDisparity != 0 || s.stereo.numDisparities < 32) continue;
+    SCOPED_TRACE(s.what);
+    StereoFrontend ref(s.stereo, s.median, scalarBackend());
+    OpenClFrontend frontend(s.stereo, s.median, "opencl", 4);
+    ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+    std::vector<OpenClFrontend::Ticket> tickets;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
+      tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view(), r));
+    }
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
+      const Image& want = ref.computeDisparity(pairs[i].left.view(), pairs[i].right.view(), r);
+      EXPECT_TRUE(sameImage(want.view(), frontend.wait(tickets[i]).view())) << "frame " << i;
+    }
+  }
+}
+
 TEST(OpenClFrontend, ProfileNamesEveryStage) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(1);

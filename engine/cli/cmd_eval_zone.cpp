@@ -1,0 +1,180 @@
+// `horopter eval-zone`: what zone-limited matching changes in the zone mask,
+// against the full-range front end on the same frames and against the true
+// zone, on the synthetic trials or on a real pair.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "horopter/core/error.hpp"
+#include "horopter/eval/stereo_eval.hpp"
+#include "horopter/eval/zone_eval.hpp"
+#include "horopter/vision/frontend.hpp"
+#include "horopter/vision/geometry.hpp"
+#include "horopter/vision/opencv.hpp"
+#include "json_text.hpp"
+#include "report_format.hpp"
+
+namespace horopter::cli {
+
+namespace {
+
+const char* kHelp =
+    "Usage: horopter eval-zone [--trials N --seed S --frames F | --left L --right R\n"
+    "                          [--gt GT --gt-scale K]] [options]\n\n"
+    "Runs the front end twice on each frame, over the full search range and zone-limited\n"
+    "(each frame searches only from a little below its smallest horopter threshold up to\n"
+    "the largest disparity wanted: `run --zone-search 1`), and prints how far the zone\n"
+    "mask moves: the zone-limited mask's precision and recall against the full-range\n"
+    "mask, and both masks' against the true zone where it is known, with the mean number\n"
+    "of disparities searched and the front end's time.\n\n"
+    "Synthetic (default): eval-tracking's closed-loop trials S .. S+N-1 (default 10240, 4\n"
+    "  trials of 300 frames; the head verges on the person); the truth is the scene's.\n"
+    "Real pair: a rectified pair; the zone's fixation is --fixation-disparity px on the\n"
+    "  centre column (default: the median valid disparity of the full-range map, so that\n"
+    "  about half the scene lies inside) and --focal-px (default: the image width). With\n"
+    "  --gt (disparity = value / K, 0 = unknown), the true zone is the ground truth's.\n\n"
+    "Zone search:\n";
+
+void printAgreement(const char* what, const MaskAgreement& a) {
+  std::printf("%-34s %9.3f %% %9.3f %%   (%lld in both, %lld test only, %lld reference only)\n",
+              what, 100 * a.precision(), 100 * a.recall(), static_cast<long long>(a.truePositive),
+              static_cast<long long>(a.falsePositive), static_cast<long long>(a.falseNegative));
+}
+
+detail::Json agreementJson(const MaskAgreement& a) {
+  using detail::jsonNumber;
+  return detail::Json{{"precision", jsonNumber(a.precision(), 6)},
+                      {"recall", jsonNumber(a.recall(), 6)},
+                      {"true_positive", a.truePositive},
+                      {"false_positive", a.falsePositive},
+                      {"false_negative", a.falseNegative}};
+}
+
+// The median valid disparity of the full-range map, px.
+double medianDisparityPx(const StereoParams& stereo, const MedianParams& median,
+                         const Backend& backend, const cv::Mat& l, const cv::Mat& r) {
+  StereoFrontend frontend(stereo, median, backend);
+  const Image& d = frontend.computeDisparity(viewOf(l), viewOf(r));
+  std::vector<int> valid;
+  for (int y = 0; y < d.height(); ++y)
+    for (int x = 0; x < d.width(); ++x) {
+      const int v = d.row<std::int16_t>(y)[x];
+      if (v != invalidDisparity(stereo) && v > 0) valid.push_back(v);
+    }
+  if (valid.empty()) throw Error("the full-range map has no positive disparity to fixate on");
+  std::nth_element(valid.begin(), valid.begin() + valid.size() / 2, valid.end());
+  return valid[valid.size() / 2] / static_cast<double>(kDisparityScale);
+}
+
+}  // namespace
+
+int runEvalZone(Args& args) {
+  if (args.flag("--help") || args.flag("-h")) {
+    std::cout << kHelp << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{})
+              << "Other:\n"
+                 "  --backend B              scalar, avx2 or auto (default auto)\n"
+                 "  --threads N              threads of each front end, 1..256 (default 1)\n"
+                 "  --json                   print one JSON object\n"
+              << stereoFlagsHelp(StereoParams{}, MedianParams{});
+    return 0;
+  }
+  const int trials = args.intValue("--trials", 4, 1, 100000);
+  const long long seed = parseInteger(args.stringValue("--seed", "10240"), "--seed", 0, 1LL << 53);
+  const int frames = args.intValue("--frames", 300, 1, 100000);
+  const std::string left = args.stringValue("--left", "");
+  const std::string right = args.stringValue("--right", "");
+  const std::string gt = args.stringValue("--gt", "");
+  const double gtScale = args.doubleValue("--gt-scale", 0);
+  std::optional<double> fixationPx, focalPx;
+  if (auto v = args.value("--fixation-disparity"))
+    fixationPx = parseNumber(*v, "--fixation-disparity", 1e-3, 4096);
+  if (auto v = args.value("--focal-px")) focalPx = parseNumber(*v, "--focal-px", 1e-3, 1e7);
+  const StereoParams stereo = parseStereoFlags(args, StereoParams{});
+  const MedianParams median = parseMedianFlags(args, MedianParams{});
+  ZoneSearch zone = parseOptionFlags(args, zoneSearchOptions(), ZoneSearch{});
+  zone.enabled = 1;  // what this command measures
+  const std::string backendName = args.stringValue("--backend", "auto");
+  const int threads = parseThreads(args, 1);
+  const bool json = args.flag("--json");
+  args.finish("eval-zone");
+  validate(zone, stereo);
+  if (left.empty() != right.empty()) throw Error("a real pair needs both --left and --right");
+  if (!gt.empty() && !(gtScale > 0))
+    throw Error("--gt needs --gt-scale K > 0 (disparity = ground-truth value / K)");
+  const Backend& backend = findBackend(backendName);
+  if (backend.name.rfind("opencl", 0) == 0)
+    throw Error("eval-zone runs the CPU front end: use --backend scalar, avx2 or auto");
+
+  ZoneEvalResult result;
+  std::string what;
+  if (left.empty()) {
+    result = evaluateZoneOnSyntheticTrials(static_cast<std::uint64_t>(seed), trials, frames,
+                                           stereo, median, zone, backend, threads);
+    what = "synthetic trials " + std::to_string(seed) + ".." + std::to_string(seed + trials - 1) +
+           ", " + std::to_string(frames) + " frames each";
+  } else {
+    const cv::Mat l = loadGrey(left, "left image"), r = loadGrey(right, "right image");
+    if (l.size() != r.size()) throw Error("the left and right images differ in size");
+    const double fixation =
+        fixationPx.value_or(medianDisparityPx(stereo, median, backend, l, r));
+    RectifiedGeometry g;
+    g.focalPx = focalPx.value_or(l.cols);
+    g.cx = (l.cols - 1) / 2.0;
+    g.cy = (l.rows - 1) / 2.0;
+    g.baseline = 1.0;
+    const std::vector<std::int16_t> thresholds =
+        horopterThresholds(g, l.cols, fixationFromDisparity(g, g.cx, fixation));
+    cv::Mat inside, known;
+    if (!gt.empty()) {
+      const cv::Mat gtPx = loadGroundTruth(gt, gtScale);
+      if (gtPx.size() != l.size()) throw Error("the ground truth's size differs from the pair's");
+      inside = cv::Mat::zeros(l.size(), CV_8UC1);
+      known = gtPx > 0;
+      for (int y = 0; y < l.rows; ++y)
+        for (int x = 0; x < l.cols; ++x)
+          if (std::lround(gtPx.at<float>(y, x) * kDisparityScale) >= thresholds[x])
+            inside.at<std::uint8_t>(y, x) = 255;
+    }
+    ZoneEvaluator evaluator(stereo, median, zone, backend, threads);
+    evaluator.addFrame(l, r, thresholds, inside, known, result);
+    char fix[64];
+    std::snprintf(fix, sizeof fix, ", fixation %.2f px", fixation);
+    what = left + fix;
+  }
+
+  const double searched = result.searchedDisparities / std::max(1, result.frames);
+  if (json) {
+    detail::Json out{{"input", what},
+                     {"frames", result.frames},
+                     {"full_disparities", stereo.numDisparities},
+                     {"mean_searched_disparities", detail::jsonNumber(searched, 3)},
+                     {"zone_vs_full", agreementJson(result.zoneVsFull)},
+                     {"full_ms", detail::jsonNumber(result.fullMs / result.frames, 3)},
+                     {"zone_ms", detail::jsonNumber(result.zoneMs / result.frames, 3)}};
+    if (result.hasTruth) {
+      out["full_vs_truth"] = agreementJson(result.fullVsTruth);
+      out["zone_vs_truth"] = agreementJson(result.zoneVsTruth);
+    }
+    writeJsonLine(detail::jsonText(out));
+    return 0;
+  }
+  std::printf("%s\n%d frame(s); disparities searched: %.1f of %d on average; front end %.2f ms "
+              "zone-limited, %.2f ms full range (backend %s, %d thread(s))\n\n",
+              what.c_str(), result.frames, searched, stereo.numDisparities,
+              result.zoneMs / result.frames, result.fullMs / result.frames, backend.name.c_str(),
+              threads);
+  std::printf("%-34s %11s %11s\n", "zone mask", "precision", "recall");
+  printAgreement("zone-limited vs full range", result.zoneVsFull);
+  if (result.hasTruth) {
+    printAgreement("full range vs true zone", result.fullVsTruth);
+    printAgreement("zone-limited vs true zone", result.zoneVsTruth);
+  }
+  return 0;
+}
+
+}  // namespace horopter::cli
