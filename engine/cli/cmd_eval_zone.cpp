@@ -31,7 +31,7 @@ const char* kHelp =
     "the largest disparity wanted: `run --zone-search 1`), and prints how far the zone\n"
     "mask moves: the zone-limited mask's precision and recall against the full-range\n"
     "mask, and both masks' against the true zone where it is known, with the mean number\n"
-    "of disparities searched and the front end's time.\n\n"
+    "of disparities searched (the bench rows frontend/*/scene and /zone measure speed).\n\n"
     "Synthetic (default): eval-tracking's closed-loop trials S .. S+N-1 (default 10240, 4\n"
     "  trials of 300 frames; the head verges on the person); the truth is the scene's.\n"
     "Real pair: a rectified pair; the zone's fixation is --fixation-disparity px on the\n"
@@ -113,15 +113,14 @@ int runEvalZone(Args& args) {
   ZoneEvalResult result;
   std::string what;
   if (left.empty()) {
-    result = evaluateZoneOnSyntheticTrials(static_cast<std::uint64_t>(seed), trials, frames,
-                                           stereo, median, zone, backend, threads);
+    result = evaluateZoneOnSyntheticTrials(static_cast<std::uint64_t>(seed), trials, frames, stereo,
+                                           median, zone, backend, threads);
     what = "synthetic trials " + std::to_string(seed) + ".." + std::to_string(seed + trials - 1) +
            ", " + std::to_string(frames) + " frames each";
   } else {
     const cv::Mat l = loadGrey(left, "left image"), r = loadGrey(right, "right image");
     if (l.size() != r.size()) throw Error("the left and right images differ in size");
-    const double fixation =
-        fixationPx.value_or(medianDisparityPx(stereo, median, backend, l, r));
+    const double fixation = fixationPx.value_or(medianDisparityPx(stereo, median, backend, l, r));
     RectifiedGeometry g;
     g.focalPx = focalPx.value_or(l.cols);
     g.cx = (l.cols - 1) / 2.0;
@@ -153,9 +152,7 @@ int runEvalZone(Args& args) {
                      {"frames", result.frames},
                      {"full_disparities", stereo.numDisparities},
                      {"mean_searched_disparities", detail::jsonNumber(searched, 3)},
-                     {"zone_vs_full", agreementJson(result.zoneVsFull)},
-                     {"full_ms", detail::jsonNumber(result.fullMs / result.frames, 3)},
-                     {"zone_ms", detail::jsonNumber(result.zoneMs / result.frames, 3)}};
+                     {"zone_vs_full", agreementJson(result.zoneVsFull)}};
     if (result.hasTruth) {
       out["full_vs_truth"] = agreementJson(result.fullVsTruth);
       out["zone_vs_truth"] = agreementJson(result.zoneVsTruth);
@@ -163,11 +160,9 @@ int runEvalZone(Args& args) {
     writeJsonLine(detail::jsonText(out));
     return 0;
   }
-  std::printf("%s\n%d frame(s); disparities searched: %.1f of %d on average; front end %.2f ms "
-              "zone-limited, %.2f ms full range (backend %s, %d thread(s))\n\n",
-              what.c_str(), result.frames, searched, stereo.numDisparities,
-              result.zoneMs / result.frames, result.fullMs / result.frames, backend.name.c_str(),
-              threads);
+  // No times here: the bench rows frontend/*/scene and /zone measure speed.
+  std::printf("%s\n%d frame(s); disparities searched: %.1f of %d on average (backend %s)\n\n",
+              what.c_str(), result.frames, searched, stereo.numDisparities, backend.name.c_str());
   std::printf("%-34s %11s %11s\n", "zone mask", "precision", "recall");
   printAgreement("zone-limited vs full range", result.zoneVsFull);
   if (result.hasTruth) {

@@ -11,7 +11,9 @@
 #include <iostream>
 #include <opencv2/highgui.hpp>
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include "commands.hpp"
 
@@ -36,6 +38,28 @@ std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) {
   gInterrupted.store(true);
 }
+
+// SIGINT (Ctrl-C), SIGTERM (kill, systemd, docker stop) and SIGHUP (the
+// terminal went away) take one path: capture stops, the frames in flight
+// finish, the base is stopped and its e-stop latched, the video is closed
+// and the summary written. The previous handlers come back on destruction.
+class StopSignals {
+ public:
+  StopSignals() {
+    for (std::size_t i = 0; i < std::size(kSignals); ++i)
+      previous_[i] = std::signal(kSignals[i], onInterrupt);
+  }
+  ~StopSignals() {
+    for (std::size_t i = 0; i < std::size(kSignals); ++i)
+      std::signal(kSignals[i], previous_[i]);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  static constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+  void (*previous_[3])(int) = {};
+};
 
 const char* kRunHelpStart =
     "Usage: horopter run [options]\n\n"
@@ -232,6 +256,8 @@ class Output {
     }
   }
 
+  std::int64_t framesDone() const { return done_; }
+
   void operator()(const Frame& f) {
     ++done_;
     const double seconds = std::chrono::duration<double>(SteadyClock::now() - start_).count();
@@ -295,8 +321,33 @@ class Output {
   std::int64_t lastIndex_ = 0;
 };
 
+// Capture to the end of the stage that commands the head: the robot's
+// drivers when there is a robot, else the closed loop's head control.
+std::optional<double> glassToCommandMs(const Frame& f) {
+  const StageSpan* command = nullptr;
+  for (const StageSpan& span : f.spans)
+    if (span.stage == "robot" || (span.stage == "head control" && !command)) command = &span;
+  if (!command) return std::nullopt;
+  return std::chrono::duration<double, std::milli>(command->end - f.captured).count();
+}
+
+struct LatencyFigures {
+  std::int64_t frames = 0;
+  double medianMs = 0, p95Ms = 0;
+};
+
+LatencyFigures latencyFigures(std::vector<double> ms) {
+  LatencyFigures out;
+  out.frames = static_cast<std::int64_t>(ms.size());
+  if (ms.empty()) return out;
+  std::sort(ms.begin(), ms.end());
+  out.medianMs = ms[ms.size() / 2];
+  out.p95Ms = ms[std::min(ms.size() - 1, ms.size() * 95 / 100)];
+  return out;
+}
+
 void printSummary(const RunSummary& s, const RunJob& job, const std::string& backendName,
-                  double meanSearched) {
+                  double meanSearched, const LatencyFigures& command) {
   std::printf("%lld frames in %.2f s: %.1f frames/s end to end, latency %.1f ms (max %.1f)",
               static_cast<long long>(s.completed), s.seconds, s.fps(), s.meanLatencyMs,
               s.maxLatencyMs);
@@ -304,6 +355,9 @@ void printSummary(const RunSummary& s, const RunJob& job, const std::string& bac
   std::printf("\n%d frame(s) in flight, %s mode, backend %s, %d thread(s)%s\n", job.config.inFlight,
               job.config.live ? "live" : "offline", backendName.c_str(), job.config.threads,
               s.stoppedByRequest ? ", stopped by request" : "");
+  if (command.frames > 0)
+    std::printf("glass to command (capture to the head command): median %.1f ms, p95 %.1f ms\n",
+                command.medianMs, command.p95Ms);
   if (job.config.zoneSearch.enabled && meanSearched > 0)
     std::printf("zone search: %.1f of %d disparities searched per frame on average\n", meanSearched,
                 job.config.stereo.numDisparities);
@@ -323,6 +377,9 @@ int runPipeline(Args& args) {
               << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{});
     return 0;
   }
+  // From here a stop signal ends the run cleanly, even during the setup.
+  gInterrupted = false;
+  const StopSignals signals;
   RunJob job = parseRun(args);
   PipelineConfig& c = job.config;
   if (job.display && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
@@ -343,9 +400,11 @@ int runPipeline(Args& args) {
   std::uint64_t digest = 0;
   double searched = 0;  // disparities searched, summed over the frames
   std::int64_t matched = 0;
+  std::vector<double> commandLatencyMs;  // capture to the head command, per frame
   PipelineHooks hooks;
-  hooks.onFrame = [&output, &digest, &searched, &matched](const Frame& f) {
+  hooks.onFrame = [&output, &digest, &searched, &matched, &commandLatencyMs](const Frame& f) {
     digest = foldDigest(digest, frameDigest(f));
+    if (const auto ms = glassToCommandMs(f)) commandLatencyMs.push_back(*ms);
     if (!f.disparity.empty()) {
       searched += f.searchRange.numDisparities;
       ++matched;
@@ -376,19 +435,16 @@ int runPipeline(Args& args) {
     std::cerr << "horopter run: source " << pipeline.source().name() << ", backend " << backend.name
               << ", " << c.threads << " thread(s), " << c.inFlight << " frame(s) in flight\n";
 
-  gInterrupted = false;
-  const auto previous = std::signal(SIGINT, onInterrupt);
   RunSummary summary;
+  std::string failure;  // a stage's error: the frames done are still closed and summarised
   try {
     summary = pipeline.run();
-  } catch (...) {
-    std::signal(SIGINT, previous);
-    throw;
+  } catch (const Error& e) {
+    failure = e.what();
   }
-  std::signal(SIGINT, previous);
   output.finish();
   if (robot) {
-    if (summary.stoppedByRequest) robot->base().emergencyStop();
+    if (summary.stoppedByRequest || !failure.empty()) robot->base().emergencyStop();
     const hw::TelemetrySample last = robot->sample();
     robot->shutdown();  // zero velocity, threads joined
     if (!job.json)
@@ -406,14 +462,27 @@ int runPipeline(Args& args) {
   summaryObject["frames_digest"] = digestText(digest);
   if (matched > 0)
     summaryObject["mean_searched_disparities"] = detail::jsonNumber(searched / matched, 2);
+  const LatencyFigures commandLatency = latencyFigures(commandLatencyMs);
+  if (commandLatency.frames > 0)
+    summaryObject["glass_to_command_ms"] = {
+        {"median", detail::jsonNumber(commandLatency.medianMs, 3)},
+        {"p95", detail::jsonNumber(commandLatency.p95Ms, 3)},
+        {"frames", commandLatency.frames}};
   summaryObject["zone_search"] = c.zoneSearch.enabled != 0;
+  if (!failure.empty()) {
+    summaryObject["frames"] = output.framesDone();
+    summaryObject["error"] = failure;
+  }
   const std::string json = detail::jsonText(summaryObject);
   detail::writeFile(job.outDir + "/summary.json", json + "\n", "run summary");
+  if (!failure.empty())
+    throw Error(failure + " (the " + std::to_string(output.framesDone()) + " frames done are in " +
+                job.outDir + ")");
   if (!job.trace.empty()) writeChromeTrace(summary, job.trace);
   if (job.json)
     std::printf("%s\n", json.c_str());
   else
-    printSummary(summary, job, backend.name, matched > 0 ? searched / matched : 0);
+    printSummary(summary, job, backend.name, matched > 0 ? searched / matched : 0, commandLatency);
   return 0;
 }
 

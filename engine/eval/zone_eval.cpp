@@ -1,6 +1,5 @@
 #include "horopter/eval/zone_eval.hpp"
 
-#include <chrono>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 
@@ -17,12 +16,6 @@ namespace {
 
 double ratio(std::int64_t hits, std::int64_t misses) {
   return hits + misses > 0 ? static_cast<double>(hits) / static_cast<double>(hits + misses) : 1.0;
-}
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 }  // namespace
@@ -69,18 +62,13 @@ ZoneEvaluator::ZoneEvaluator(const StereoParams& stereo, const MedianParams& med
 ZoneEvaluator::~ZoneEvaluator() = default;
 
 void ZoneEvaluator::addFrame(const cv::Mat& leftGrey, const cv::Mat& rightGrey,
-                             const std::vector<std::int16_t>& thresholds,
-                             const cv::Mat& trueInside, const cv::Mat& truthKnown,
-                             ZoneEvalResult& result) {
-  auto start = Clock::now();
+                             const std::vector<std::int16_t>& thresholds, const cv::Mat& trueInside,
+                             const cv::Mat& truthKnown, ZoneEvalResult& result) {
   fronts_->full.computeDisparity(viewOf(leftGrey), viewOf(rightGrey));
   fronts_->full.computeMask(thresholds);
-  result.fullMs += msSince(start);
-  start = Clock::now();
   const SearchRange range = zoneSearchRange(stereo_, thresholds, zone_);
   fronts_->zone.computeDisparity(viewOf(leftGrey), viewOf(rightGrey), range);
   fronts_->zone.computeMask(thresholds);
-  result.zoneMs += msSince(start);
   const cv::Mat fullMask = matOf(fronts_->full.mask());
   const cv::Mat zoneMask = matOf(fronts_->zone.mask());
   result.zoneVsFull.add(zoneMask, fullMask);
@@ -94,9 +82,9 @@ void ZoneEvaluator::addFrame(const cv::Mat& leftGrey, const cv::Mat& rightGrey,
 }
 
 ZoneEvalResult evaluateZoneOnSyntheticTrials(std::uint64_t seed, int trials, int frames,
-                                             const StereoParams& stereo,
-                                             const MedianParams& median, const ZoneSearch& zone,
-                                             const Backend& backend, int threads) {
+                                             const StereoParams& stereo, const MedianParams& median,
+                                             const ZoneSearch& zone, const Backend& backend,
+                                             int threads) {
   if (trials < 1 || frames < 1) throw Error("eval-zone: give at least one trial and one frame");
   ZoneEvaluator evaluator(stereo, median, zone, backend, threads);
   ZoneEvalResult result;
@@ -111,8 +99,8 @@ ZoneEvalResult evaluateZoneOnSyntheticTrials(std::uint64_t seed, int trials, int
     trial.median = median;
     trial.backend = backend.name;
     runTrackingTrial(trial, DetectionScope::HoropterRegion, {}, [&](const TrialFrame& f) {
-      evaluator.addFrame(f.frame.leftGrey, f.frame.rightGrey, f.frame.thresholds,
-                         f.truth.inside, {}, result);
+      evaluator.addFrame(f.frame.leftGrey, f.frame.rightGrey, f.frame.thresholds, f.truth.inside,
+                         {}, result);
     });
   }
   return result;

@@ -15,7 +15,8 @@ const NumberOption<ZoneSearch> kZoneSearchOptions[] = {
     {"zoneMarginPx", "--zone-margin", "px", 0, 256,
      "disparities searched below the zone's smallest threshold", &ZoneSearch::marginPx},
     {"zoneMaxDisparity", "--zone-max-disparity", "px", 0, 2047,
-     "largest disparity searched with --zone-search 1; 0: the full range's", &ZoneSearch::maxDisparity},
+     "largest disparity searched with --zone-search 1; 0: the full range's",
+     &ZoneSearch::maxDisparity},
 };
 
 int roundUpTo16(int n) {
@@ -57,8 +58,8 @@ void validate(const ZoneSearch& z, const StereoParams& full) {
     throw Error("zoneMaxDisparity (" + std::to_string(z.maxDisparity) +
                 " px) lies below the smallest disparity searched (minDisparity " +
                 std::to_string(full.minDisparity) + " px)");
-  validate(withRange(full, {full.minDisparity, roundUpTo16(largestDisparity(full, z) + 1 -
-                                                           full.minDisparity)}));
+  validate(withRange(
+      full, {full.minDisparity, roundUpTo16(largestDisparity(full, z) + 1 - full.minDisparity)}));
 }
 
 int largestDisparity(const StereoParams& full, const ZoneSearch& z) {

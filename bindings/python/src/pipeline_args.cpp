@@ -20,10 +20,10 @@ bool setTuningOption(std::span<const NumberOption<Params>> table, Params& p,
     const bool isNumber = isInt || py::isinstance<py::float_>(value);
     if (o.integer() ? !isInt : !isNumber)
       throw py::type_error(name + (o.integer() ? " must be an int" : " must be a number") +
-                           ", got " +
-                           std::string(py::str(py::type::of(value).attr("__name__"))));
+                           ", got " + std::string(py::str(py::type::of(value).attr("__name__"))));
     const double v = value.cast<double>();
-    if (!(v >= o.min && v <= o.max)) throw Error(numberRangeMessage(o.name, o.unit, o.min, o.max, v));
+    if (!(v >= o.min && v <= o.max))
+      throw Error(numberRangeMessage(o.name, o.unit, o.min, o.max, v));
     o.set(p, v);
     return true;
   }

@@ -36,7 +36,6 @@ struct ZoneEvalResult {
   MaskAgreement fullVsTruth;       // the full-range mask against the true zone
   MaskAgreement zoneVsTruth;       // the zone-limited mask against the true zone
   double searchedDisparities = 0;  // summed over frames (mean: / frames)
-  double fullMs = 0, zoneMs = 0;   // front-end wall time, summed over frames
 };
 
 // Runs both front ends (`full` over the full range of `stereo`, then over
@@ -63,8 +62,8 @@ class ZoneEvaluator {
 // as eval-tracking runs them (the head verging on the person, so the
 // thresholds are those `horopter run` computes), `frames` frames each.
 ZoneEvalResult evaluateZoneOnSyntheticTrials(std::uint64_t seed, int trials, int frames,
-                                             const StereoParams& stereo,
-                                             const MedianParams& median, const ZoneSearch& zone,
-                                             const Backend& backend, int threads);
+                                             const StereoParams& stereo, const MedianParams& median,
+                                             const ZoneSearch& zone, const Backend& backend,
+                                             int threads);
 
 }  // namespace horopter
