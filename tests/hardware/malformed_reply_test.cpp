@@ -1,13 +1,15 @@
 // Devices that speak the protocol but say nonsense (issue 22): a DYNAMIXEL
 // status packet with a valid CRC and no ERROR byte or short data, ticks no
-// servo reports. Each is a counted fault in health() and retried; none
-// throws out of a driver thread and none becomes a measured angle.
+// servo reports, a PTU answering "inf". Each is a counted fault in health()
+// and retried; none throws out of a driver thread and none becomes a
+// measured angle.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <thread>
 
 #include "horopter/hardware/dynamixel_head.hpp"
+#include "horopter/hardware/ptu_head.hpp"
 #include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_devices.hpp"
 
@@ -46,6 +48,11 @@ bool contains(const std::string& text, const std::string& part) {
 
 std::unique_ptr<DynamixelHead> openHead(SimDynamixelBus& bus, DynamixelHeadOptions o = {}) {
   return std::make_unique<DynamixelHead>(std::make_unique<SerialPort>(bus.port()), o);
+}
+
+std::unique_ptr<PtuHead> openHead(SimPtu& sim, PtuHeadOptions o = {}) {
+  return std::make_unique<PtuHead>(std::make_unique<SerialPort>(sim.port(), SerialOptions{9600}),
+                                   o);
 }
 
 // One bad reply: counted as corrupt, retried, the head keeps measuring.
@@ -90,5 +97,28 @@ TEST(DynamixelMalformedReply, OutOfRangeTicksNeverBecomeAnAngle) {
   ASSERT_TRUE(eventuallyWithSaneAngles(*head, [&] { return !head->health().linkUp; }));
   EXPECT_TRUE(contains(head->health().lastFault, "2147483647")) << head->health().lastFault;
   bus.injectStatus({}, 0);
+  EXPECT_TRUE(eventuallyWithSaneAngles(*head, [&] { return head->health().linkUp; }));
+}
+
+TEST(PtuMalformedReply, NonFiniteOrHugeNumbersAreFaults) {
+  SimPtu sim;
+  auto head = openHead(sim);
+  for (const char* reply : {"* inf", "* -inf", "* nan", "* infinity", "* 1e300",
+                            "* 9223372036854775807", "* 12abc", "*"}) {
+    SCOPED_TRACE(reply);
+    sim.injectReply(reply, 1);
+    expectOneCountedFault(*head, "");
+  }
+}
+
+TEST(PtuMalformedReply, PositionOutsideTheUnitsRangeIsAFault) {
+  SimPtu sim;  // pan -3090 .. 3090 positions
+  PtuHeadOptions o;
+  o.linkLostAfter = 3;
+  auto head = openHead(sim, o);
+  sim.injectReply("* 99999999", 1000000);
+  ASSERT_TRUE(eventuallyWithSaneAngles(*head, [&] { return !head->health().linkUp; }));
+  EXPECT_TRUE(contains(head->health().lastFault, "99999999")) << head->health().lastFault;
+  sim.injectReply("", 0);
   EXPECT_TRUE(eventuallyWithSaneAngles(*head, [&] { return head->health().linkUp; }));
 }
