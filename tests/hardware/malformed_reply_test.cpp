@@ -1,17 +1,20 @@
 // Devices that speak the protocol but say nonsense (issue 22): a DYNAMIXEL
 // status packet with a valid CRC and no ERROR byte or short data, ticks no
-// servo reports, a PTU answering "inf". Each is a counted fault in health()
-// and retried; none throws out of a driver thread and none becomes a
-// measured angle.
+// servo reports, a PTU answering "inf", an RMP reporting 99 m/s. Each is a
+// counted fault in health() and retried; none throws out of a driver thread
+// and none becomes a measured angle or a velocity.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <thread>
 
+#include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/ptu_head.hpp"
+#include "horopter/hardware/rmp_base.hpp"
 #include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_devices.hpp"
+#include "horopter/hardware/sim_rmp.hpp"
 
 using namespace horopter::hw;
 using namespace std::chrono_literals;
@@ -121,4 +124,20 @@ TEST(PtuMalformedReply, PositionOutsideTheUnitsRangeIsAFault) {
   EXPECT_TRUE(contains(head->health().lastFault, "99999999")) << head->health().lastFault;
   sim.injectReply("", 0);
   EXPECT_TRUE(eventuallyWithSaneAngles(*head, [&] { return head->health().linkUp; }));
+}
+
+TEST(RmpMalformedFeedback, ImplausibleStatusValuesAreBadFramesNotOdometry) {
+  InProcessCanBus bus;
+  SimRmp sim(bus.deviceSide());
+  RmpBase base(bus.takeHostSide());
+  ASSERT_TRUE(eventually([&] { return base.odometry().has_value(); }));
+  const long before = base.health().badFrames;
+  sim.injectFault(SimRmpFault::kWildValues, 20);  // 0.2 s of 99 m/s wheels, mode 9
+  ASSERT_TRUE(eventually([&] {
+    const auto o = base.odometry();
+    EXPECT_LT(std::abs(o->velocity.linear), 1.0) << "wheel speeds of 99 m/s were believed";
+    EXPECT_LT(std::abs(o->x), 1.0);
+    return base.health().badFrames >= before + 20;
+  }));
+  EXPECT_TRUE(base.health().linkUp);
 }
