@@ -55,6 +55,13 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
   } else {
     options_.limits.hasVergence = false;
   }
+  for (std::size_t i = 0; i < ids_.size(); ++i) {
+    if (ids_[i] > 252) throw Error("DYNAMIXEL IDs are 0..252, got " + std::to_string(ids_[i]));
+    if (std::find(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(i), ids_[i]) !=
+        ids_.begin() + static_cast<std::ptrdiff_t>(i))
+      throw Error("DYNAMIXEL ID " + std::to_string(ids_[i]) +
+                  " is given twice: pan, tilt and each vergence axis need a servo of their own");
+  }
   for (std::uint8_t id : ids_) {
     const auto replies = exchange(dxl::pingPacket(id), {id}, 3);
     if (replies.empty())

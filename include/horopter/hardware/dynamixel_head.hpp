@@ -10,7 +10,7 @@
 // is retried (`retries`) on a timeout or a malformed reply (bad CRC, no ERROR
 // byte, the wrong number of data bytes, ticks outside the Position Control
 // Mode range): each counted in health(), never thrown, never an angle;
-// `linkLostAfter` failed cycles in a row mark the link down.
+// `linkLostAfter` failed cycles in a row mark the link down. IDs must differ.
 // The latest command wins; command() and measured() never wait for the bus.
 //
 // Vergence (a head with left and right eye servos): the total angle v is
