@@ -38,7 +38,8 @@ const char* kHeadHelp =
     "  --sim               a simulated device on a pseudo-terminal instead of --port\n"
     "  --protocol P        dynamixel (Protocol 2.0, X series; default) or ptu (FLIR ASCII)\n"
     "  --baud N            default 57600 (dynamixel) or 9600 (ptu)\n"
-    "  --ids P,T[,L,R]     DYNAMIXEL IDs of pan, tilt and left/right vergence (default 1,2)\n"
+    "  --ids P,T[,L,R]     DYNAMIXEL IDs of pan, tilt and left/right vergence, all different\n"
+    "                      (default 1,2; dynamixel only: a PTU has no IDs)\n"
     "  --pan R --tilt R --vergence R   target angles in radians (vergence: dynamixel with 4 IDs)\n"
     "  --speed R           rad/s per axis (default 0.5, at most 1.0)\n"
     "  --tolerance R       arrived when every axis is within R rad (default 0.003)\n"
@@ -58,6 +59,9 @@ std::vector<int> parseIds(const std::string& text) {
     } catch (const std::exception&) {
       throw Error("--ids: '" + item + "' is not a DYNAMIXEL ID (0..252)");
     }
+    if (std::count(ids.begin(), ids.end(), ids.back()) > 1)
+      throw Error("--ids: ID " + std::to_string(ids.back()) +
+                  " is given twice (pan, tilt and each vergence axis need a servo of their own)");
   }
   if (ids.size() != 2 && ids.size() != 4)
     throw Error("--ids takes 2 IDs (pan,tilt) or 4 (pan,tilt,left,right), got " +
@@ -94,7 +98,10 @@ int runHead(Args& args) {
   if (protocol != "dynamixel" && protocol != "ptu")
     throw Error("--protocol must be dynamixel or ptu, got '" + protocol + "'");
   const int baud = args.intValue("--baud", protocol == "ptu" ? 9600 : 57600);
-  const std::vector<int> ids = parseIds(args.stringValue("--ids", "1,2"));
+  const auto idsText = args.value("--ids");
+  if (idsText && protocol == "ptu")
+    throw Error("--ids is for --protocol dynamixel: a FLIR PTU has no servo IDs");
+  const std::vector<int> ids = parseIds(idsText.value_or("1,2"));
   const auto pan = args.optionalDouble("--pan");
   const auto tilt = args.optionalDouble("--tilt");
   const auto vergence = args.optionalDouble("--vergence");

@@ -114,22 +114,29 @@ void RmpBase::receiveAll(Clock::time_point now) {
       health_.motorsEnabled = *enabled;
       continue;
     }
-    if (f.id == rmp::kStatusFirstId) partial_.receivedMask = 0;  // a new series starts
+    if (f.id == rmp::kStatusFirstId) {  // a new series starts
+      partial_.receivedMask = 0;
+      partialHasBadFrame_ = false;
+    }
     try {
       if (!rmp::decodeStatusFrame(f, options_.scaling, partial_)) continue;
     } catch (const Error& e) {
+      // Wrong length or implausible values: counted, never used (the series
+      // stays incomplete, so odometry skips it).
       ++health_.badFrames;
       health_.lastFault = e.what();
+      partialHasBadFrame_ = true;
       continue;
     }
     if (f.id == rmp::kStatusLastId) {
       if ((partial_.receivedMask & kFullSeries) == kFullSeries) {
         completeSeries(now);
-      } else {
+      } else if (!partialHasBadFrame_) {  // a bad frame was counted and named already
         ++health_.badFrames;
         health_.lastFault = "incomplete RMP status series (frames missing)";
       }
       partial_.receivedMask = 0;
+      partialHasBadFrame_ = false;
     }
   }
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "horopter/core/error.hpp"
@@ -44,6 +45,32 @@ std::int32_t getI32(const CanFrame& f, int at) {
   const std::uint32_t high = getU16(f, at + 2);
   return static_cast<std::int32_t>(low | (high << 16));
 }
+std::string hexId(std::uint32_t id) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%03X", static_cast<unsigned>(id));
+  return text;
+}
+
+// Why a decoded status is not one an RMP sends ("" when it is): see
+// rmp_protocol.hpp for the bounds.
+std::string implausible(const Status& st) {
+  auto over = [](double value, double bound) { return !(std::abs(value) <= bound); };
+  const double maxAngle = std::numbers::pi, maxRate = kMaxPlausibleRate,
+               maxSpeed = kMaxPlausibleSpeed;
+  if (over(st.pitch, maxAngle) || over(st.roll, maxAngle))
+    return "pitch or roll beyond 180 degrees";
+  if (over(st.pitchRate, maxRate) || over(st.rollRate, maxRate) || over(st.yawRate, maxRate))
+    return "a turn rate beyond 1000 degrees/s";
+  if (over(st.leftWheelSpeed, maxSpeed) || over(st.rightWheelSpeed, maxSpeed) ||
+      over(st.commandedVelocity, maxSpeed))
+    return "a speed beyond " + std::to_string(static_cast<int>(maxSpeed)) + " m/s";
+  if (st.operationalMode < 0 || st.operationalMode > 3)
+    return "operational mode " + std::to_string(st.operationalMode) + " (0..3 exist)";
+  if (st.gainSchedule < 0 || st.gainSchedule > 2)
+    return "gain schedule " + std::to_string(st.gainSchedule) + " (0..2 exist)";
+  return {};
+}
+
 std::int32_t roundI32(double v) {
   return static_cast<std::int32_t>(std::clamp(std::round(v), -2147483648.0, 2147483647.0));
 }
@@ -97,11 +124,12 @@ BaseVelocity countsToVelocity(const MotionCounts& counts, const Scaling& scaling
           counts.yawRate / scaling.countsPerDegPerS / kDegPerRad};
 }
 
-bool decodeStatusFrame(const CanFrame& frame, const Scaling& s, Status& st) {
+bool decodeStatusFrame(const CanFrame& frame, const Scaling& s, Status& status) {
   if (frame.id < kStatusFirstId || frame.id > kStatusLastId) return false;
-  if (frame.id != kStatusFirstId && frame.length != 8)
-    throw Error("RMP status frame 0x" + std::to_string(frame.id) + " has " +
-                std::to_string(frame.length) + " data bytes, expected 8");
+  if (frame.length > 8 || (frame.id != kStatusFirstId && frame.length != 8))
+    throw Error("RMP status frame " + hexId(frame.id) + " has " + std::to_string(frame.length) +
+                " data bytes, expected 8");
+  Status st = status;  // written back only when every value is plausible
   const double degToRad = 1.0 / kDegPerRad;
   switch (frame.id) {
     case 0x401:
@@ -141,7 +169,10 @@ bool decodeStatusFrame(const CanFrame& frame, const Scaling& s, Status& st) {
     default:
       break;
   }
+  const std::string bad = implausible(st);
+  if (!bad.empty()) throw Error("RMP status frame " + hexId(frame.id) + ": " + bad);
   st.receivedMask |= 1u << (frame.id - kStatusFirstId);
+  status = st;
   return true;
 }
 

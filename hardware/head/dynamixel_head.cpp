@@ -8,6 +8,36 @@
 
 namespace horopter::hw {
 
+namespace {
+
+// "" when a Present Position reply holds ticks the servo can report.
+std::string positionProblem(const dxl::Status& s, const dxl::ServoModel& m) {
+  const std::int32_t ticks = dxl::fromLittleEndian(s.data);
+  if (dxl::isPositionTick(ticks, m)) return {};
+  return "ID " + std::to_string(s.id) + ": present position " + std::to_string(ticks) +
+         " ticks is outside " + std::to_string(m.minPositionTick) + ".." +
+         std::to_string(m.maxPositionTick);
+}
+
+// "" when a Read of Velocity Limit .. Min Position Limit holds values within their ranges.
+std::string limitsProblem(const dxl::Status& s, const dxl::ServoModel& m) {
+  auto at = [&](std::uint16_t address) {
+    return dxl::fromLittleEndian(std::span(s.data).subspan(address - m.velocityLimitAddress, 4));
+  };
+  const std::int32_t lo = at(m.minPositionLimitAddress), hi = at(m.maxPositionLimitAddress);
+  const std::int32_t velocity = at(m.velocityLimitAddress);
+  if (!dxl::isPositionTick(lo, m) || !dxl::isPositionTick(hi, m) || lo > hi)
+    return "ID " + std::to_string(s.id) + ": position limits " + std::to_string(lo) + ".." +
+           std::to_string(hi) + " are not within " + std::to_string(m.minPositionTick) + ".." +
+           std::to_string(m.maxPositionTick);
+  if (velocity < 0 || velocity > m.maxVelocityLimit)
+    return "ID " + std::to_string(s.id) + ": velocity limit " + std::to_string(velocity) +
+           " is outside 0.." + std::to_string(m.maxVelocityLimit);
+  return {};
+}
+
+}  // namespace
+
 DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, DynamixelHeadOptions options)
     : transport_(std::move(transport)), options_(std::move(options)) {
   if (!transport_) throw Error("DynamixelHead needs a transport");
@@ -25,28 +55,32 @@ DynamixelHead::DynamixelHead(std::unique_ptr<ByteTransport> transport, Dynamixel
   } else {
     options_.limits.hasVergence = false;
   }
+  for (std::size_t i = 0; i < ids_.size(); ++i) {
+    if (ids_[i] > 252) throw Error("DYNAMIXEL IDs are 0..252, got " + std::to_string(ids_[i]));
+    if (std::find(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(i), ids_[i]) !=
+        ids_.begin() + static_cast<std::ptrdiff_t>(i))
+      throw Error("DYNAMIXEL ID " + std::to_string(ids_[i]) +
+                  " is given twice: pan, tilt and each vergence axis need a servo of their own");
+  }
   for (std::uint8_t id : ids_) {
-    const auto replies = exchange(dxl::pingPacket(id), {id});
+    const auto replies = exchange(dxl::pingPacket(id), {id}, 3);
     if (replies.empty())
       throw Error("DYNAMIXEL ID " + std::to_string(id) + " does not answer on " +
                   transport_->describe() +
                   ": check the ID, the baud rate (X series default 57600) "
-                  "and the power");
-    const auto& d = replies[0].data;
-    modelNumbers_.push_back(d.size() >= 2 ? dxl::fromLittleEndian(std::span(d).first(2)) : -1);
+                  "and the power (" +
+                  health().lastFault + ")");
+    modelNumbers_.push_back(dxl::fromLittleEndian(std::span(replies[0].data).first(2)));
   }
   readServoLimits();
   for (std::uint8_t id : ids_) {
     const std::vector<std::uint8_t> one = {1};
-    if (exchange(dxl::writePacket(id, options_.model.torqueEnableAddress, one), {id}).empty())
-      throw Error("DYNAMIXEL ID " + std::to_string(id) + " did not acknowledge Torque Enable");
+    if (exchange(dxl::writePacket(id, options_.model.torqueEnableAddress, one), {id}, 0).empty())
+      throw Error("DYNAMIXEL ID " + std::to_string(id) + " did not acknowledge Torque Enable (" +
+                  health().lastFault + ")");
   }
-  const auto present =
-      exchange(dxl::syncReadPacket(options_.model.presentPositionAddress, 4, ids_), ids_);
-  if (present.size() == ids_.size()) {
-    std::vector<std::int32_t> ticks;
-    for (const auto& s : present)
-      ticks.push_back(dxl::fromLittleEndian(s.data));
+  const std::vector<std::int32_t> ticks = readPresentTicks();
+  if (!ticks.empty()) {
     lastTicks_ = ticks;
     measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};
     target_ = measured_->angles;
@@ -65,10 +99,12 @@ void DynamixelHead::readServoLimits() {
   const std::uint16_t length = static_cast<std::uint16_t>(m.minPositionLimitAddress + 4 - first);
   HeadLimits& l = options_.limits;
   auto axis = [&](std::uint8_t id, int direction, double& lo, double& hi) {
-    const auto r = exchange(dxl::readPacket(id, first, length), {id});
-    if (r.empty() || r[0].data.size() != length)
+    const auto r = exchange(dxl::readPacket(id, first, length), {id}, length,
+                            [&m](const dxl::Status& s) { return limitsProblem(s, m); });
+    if (r.empty())
       throw Error("DYNAMIXEL ID " + std::to_string(id) + " did not return its limits (Read " +
-                  std::to_string(first) + ", " + std::to_string(length) + " bytes)");
+                  std::to_string(first) + ", " + std::to_string(length) +
+                  " bytes): " + health().lastFault);
     const auto& d = r[0].data;
     auto at = [&](std::uint16_t address) {
       return dxl::fromLittleEndian(std::span(d).subspan(address - first, 4));
@@ -143,10 +179,13 @@ HeadAngles DynamixelHead::anglesFromTicks(const std::vector<std::int32_t>& t) co
   return a;
 }
 
-// Sends `request`, collects one status packet from each of `ids` (in order).
-// Empty result: failed after the retries (the reason is in health()).
+// Sends `request`, collects one status packet from each of `ids` (in order),
+// each with `dataLength` data bytes that `check` (if any) accepts. Anything
+// else is a counted fault and the request is sent again. Empty result: failed
+// after the retries (the reason is in health()).
 std::vector<dxl::Status> DynamixelHead::exchange(const std::vector<std::uint8_t>& request,
-                                                 const std::vector<std::uint8_t>& ids) {
+                                                 const std::vector<std::uint8_t>& ids,
+                                                 std::size_t dataLength, const StatusCheck& check) {
   std::string why;
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
     transport_->discardInput();
@@ -167,6 +206,11 @@ std::vector<dxl::Status> DynamixelHead::exchange(const std::vector<std::uint8_t>
       if (r.outcome == dxl::ParseOutcome::kPacket) {
         if (r.packet.instruction != dxl::inst::kStatus)
           continue;  // our own echo on a half-duplex adapter
+        if (r.packet.params.empty()) {
+          corrupt = true;
+          why = "status packet from ID " + std::to_string(r.packet.id) + " has no ERROR byte";
+          break;
+        }
         const dxl::Status s = dxl::toStatus(r.packet);
         if (s.id != ids[got.size()]) continue;
         got.push_back(s);
@@ -199,10 +243,34 @@ std::vector<dxl::Status> DynamixelHead::exchange(const std::vector<std::uint8_t>
         deviceError = true;
       }
     if (deviceError) continue;
+    std::string bad;
+    for (const auto& s : got) {
+      if (s.data.size() != dataLength)
+        bad = "ID " + std::to_string(s.id) + ": " + std::to_string(s.data.size()) +
+              " data bytes, expected " + std::to_string(dataLength);
+      else if (check)
+        bad = check(s);
+      if (!bad.empty()) break;
+    }
+    if (!bad.empty()) {
+      ++health_.corruptReplies;
+      health_.lastFault = "implausible reply: " + bad;
+      continue;
+    }
     ++health_.exchanges;
     return got;
   }
   return {};
+}
+
+std::vector<std::int32_t> DynamixelHead::readPresentTicks() {
+  const auto& m = options_.model;
+  const auto replies = exchange(dxl::syncReadPacket(m.presentPositionAddress, 4, ids_), ids_, 4,
+                                [&m](const dxl::Status& s) { return positionProblem(s, m); });
+  std::vector<std::int32_t> ticks;
+  for (const auto& s : replies)
+    ticks.push_back(dxl::fromLittleEndian(s.data));
+  return ticks;
 }
 
 void DynamixelHead::fail(const std::string& what) {
@@ -240,14 +308,11 @@ void DynamixelHead::cycle() {
     transport_->write(dxl::syncWritePacket(m.goalPositionAddress, 4, goalTicks(target)));
     sentGeneration_ = generation;
   }
-  const auto replies = exchange(dxl::syncReadPacket(m.presentPositionAddress, 4, ids_), ids_);
-  if (replies.size() != ids_.size()) {
+  const std::vector<std::int32_t> ticks = readPresentTicks();
+  if (ticks.empty()) {
     fail(health().lastFault);
     return;
   }
-  std::vector<std::int32_t> ticks;
-  for (const auto& s : replies)
-    ticks.push_back(dxl::fromLittleEndian(s.data));
   lastTicks_ = ticks;
   std::lock_guard lock(mutex_);
   measured_ = HeadMeasurement{Clock::now(), anglesFromTicks(ticks)};

@@ -217,6 +217,10 @@ std::string describeError(std::uint8_t error) {
   return s;
 }
 
+bool isPositionTick(std::int32_t ticks, const ServoModel& model) {
+  return ticks >= model.minPositionTick && ticks <= model.maxPositionTick;
+}
+
 double ticksToRadians(std::int32_t ticks, const ServoModel& model) {
   return (ticks - model.centreTick) * 2.0 * std::numbers::pi / model.ticksPerTurn;
 }

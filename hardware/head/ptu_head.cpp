@@ -28,11 +28,21 @@ PtuHead::PtuHead(std::unique_ptr<ByteTransport> transport, PtuHeadOptions option
       ptu::arcSecondsToRadians(ptu::parseNumber(require(ptu::queryResolution(ptu::Axis::kPan))));
   tiltRes_ =
       ptu::arcSecondsToRadians(ptu::parseNumber(require(ptu::queryResolution(ptu::Axis::kTilt))));
-  if (!(panRes_ > 0) || !(tiltRes_ > 0)) throw Error("the PTU reported a resolution <= 0");
+  const double maxRes = ptu::arcSecondsToRadians(3600);  // coarser than 1 degree: nonsense
+  if (!(panRes_ > 0 && panRes_ <= maxRes) || !(tiltRes_ > 0 && tiltRes_ <= maxRes))
+    throw Error("the PTU reported a resolution outside (0, 3600] arc-seconds per position");
   const long pn = ptu::parseInteger(require(ptu::queryMinPosition(ptu::Axis::kPan)));
   const long px = ptu::parseInteger(require(ptu::queryMaxPosition(ptu::Axis::kPan)));
   const long tn = ptu::parseInteger(require(ptu::queryMinPosition(ptu::Axis::kTilt)));
   const long tx = ptu::parseInteger(require(ptu::queryMaxPosition(ptu::Axis::kTilt)));
+  if (pn > px || tn > tx)
+    throw Error("the PTU reported limits with min above max (pan " + std::to_string(pn) + ".." +
+                std::to_string(px) + ", tilt " + std::to_string(tn) + ".." + std::to_string(tx) +
+                ")");
+  panMin_ = pn;
+  panMax_ = px;
+  tiltMin_ = tn;
+  tiltMax_ = tx;
   // The unit's limits in head angles (a direction of -1 swaps min and max).
   auto range = [](long lo, long hi, double res, int dir) {
     const double a = dir * lo * res, b = dir * hi * res;
@@ -67,8 +77,10 @@ ptu::Reply PtuHead::require(const std::string& command) {
   return *r;
 }
 
-// One command, one reply line. nullopt after the retries (reason in health()).
-std::optional<ptu::Reply> PtuHead::exchange(const std::string& command) {
+// One command, one reply line; a query's value must pass `check` (if any).
+// A malformed or implausible reply is counted and the command sent again.
+// nullopt after the retries (reason in health()).
+std::optional<ptu::Reply> PtuHead::exchange(const std::string& command, const ReplyCheck& check) {
   const std::string echo = trimmed(command);
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
     transport_->discardInput();
@@ -89,6 +101,7 @@ std::optional<ptu::Reply> PtuHead::exchange(const std::string& command) {
             health_.lastFault = std::string(r.text == "P" ? "pan" : "tilt") + " axis hit its limit";
             continue;
           }
+          if (check && r.kind == ptu::ReplyKind::kOk) problem = check(r);
           reply = r;
         } catch (const Error& e) {
           problem = e.what();
@@ -184,24 +197,40 @@ void PtuHead::cycle() {
                                   std::lround(options_.tiltDirection * target.tilt / tiltRes_)));
     if (ok) sentGeneration_ = generation;  // otherwise resend next cycle
   }
-  const auto pan = exchange(ptu::queryPosition(ptu::Axis::kPan));
-  const auto tilt = pan ? exchange(ptu::queryPosition(ptu::Axis::kTilt)) : std::nullopt;
+  auto position = [this](ptu::Axis axis) {
+    return exchange(ptu::queryPosition(axis),
+                    [this, axis](const ptu::Reply& r) { return positionProblem(r, axis); });
+  };
+  const auto pan = position(ptu::Axis::kPan);
+  const auto tilt = pan ? position(ptu::Axis::kTilt) : std::nullopt;
   std::lock_guard lock(mutex_);
   if (!pan || !tilt || pan->kind != ptu::ReplyKind::kOk || tilt->kind != ptu::ReplyKind::kOk) {
     if (++failuresInARow_ >= options_.linkLostAfter) health_.linkUp = false;
     return;
   }
+  HeadAngles a;  // both replies passed positionProblem()
+  a.pan = options_.panDirection * ptu::parseInteger(*pan) * panRes_;
+  a.tilt = options_.tiltDirection * ptu::parseInteger(*tilt) * tiltRes_;
+  measured_ = HeadMeasurement{Clock::now(), a};
+  failuresInARow_ = 0;
+  health_.linkUp = true;
+}
+
+// A position reply must be an integer within the unit's limits, widened by a
+// tenth of the range (a unit may stop a little past a soft limit).
+std::string PtuHead::positionProblem(const ptu::Reply& reply, ptu::Axis axis) const {
+  long v = 0;
   try {
-    HeadAngles a;
-    a.pan = options_.panDirection * ptu::parseInteger(*pan) * panRes_;
-    a.tilt = options_.tiltDirection * ptu::parseInteger(*tilt) * tiltRes_;
-    measured_ = HeadMeasurement{Clock::now(), a};
-    failuresInARow_ = 0;
-    health_.linkUp = true;
+    v = ptu::parseInteger(reply);
   } catch (const Error& e) {
-    ++health_.corruptReplies;
-    health_.lastFault = e.what();
+    return e.what();
   }
+  const bool pan = axis == ptu::Axis::kPan;
+  const long lo = pan ? panMin_ : tiltMin_, hi = pan ? panMax_ : tiltMax_;
+  const long margin = (hi - lo) / 10;
+  if (v >= lo - margin && v <= hi + margin) return {};
+  return std::string(pan ? "pan" : "tilt") + " position " + std::to_string(v) +
+         " is outside the unit's range " + std::to_string(lo) + ".." + std::to_string(hi);
 }
 
 void PtuHead::shutdown() {

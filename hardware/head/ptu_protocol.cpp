@@ -22,6 +22,14 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(b, e - b + 1));
 }
 
+// The text as it can be shown in a message: control bytes become '?'.
+std::string printable(std::string_view s) {
+  std::string shown;
+  for (char c : s)
+    shown += (c >= 0x20 && c < 0x7F) ? c : '?';
+  return shown;
+}
+
 }  // namespace
 
 std::string setPosition(Axis axis, long positions) {
@@ -90,10 +98,7 @@ Reply parseReply(std::string_view line) {
     r.text = rest;
     return r;
   }
-  std::string shown;
-  for (char c : t)
-    shown += (c >= 0x20 && c < 0x7F) ? c : '?';
-  throw Error("malformed PTU reply '" + shown + "': expected '*' or '!' first");
+  throw Error("malformed PTU reply '" + printable(t) + "': expected '*' or '!' first");
 }
 
 double parseNumber(const Reply& reply) {
@@ -103,13 +108,20 @@ double parseNumber(const Reply& reply) {
   const char* e = b + reply.text.size();
   const auto [ptr, ec] = std::from_chars(b, e, v);
   if (ec != std::errc() || ptr != e || reply.text.empty())
-    throw Error("PTU reply '" + reply.text + "' is not a number");
+    throw Error("PTU reply '" + printable(reply.text) + "' is not a number");
+  // from_chars reads "inf" and "nan"; no PTU quantity is either.
+  if (!std::isfinite(v)) throw Error("PTU reply '" + printable(reply.text) + "' is not finite");
   return v;
 }
 
 long parseInteger(const Reply& reply) {
   const double v = parseNumber(reply);
-  if (v != std::floor(v)) throw Error("PTU reply '" + reply.text + "' is not an integer");
+  if (v != std::floor(v))
+    throw Error("PTU reply '" + printable(reply.text) + "' is not an integer");
+  // Positions and speeds fit 32 bits; a bigger value is garbage (and its cast
+  // to long could be undefined).
+  if (v < -2147483648.0 || v > 2147483647.0)
+    throw Error("PTU reply '" + printable(reply.text) + "' is out of range (more than 32 bits)");
   return static_cast<long>(v);
 }
 

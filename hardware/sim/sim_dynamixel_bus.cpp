@@ -33,6 +33,12 @@ void SimDynamixelBus::injectFault(DeviceFault fault, int count) {
   faultCount_ = count;
 }
 
+void SimDynamixelBus::injectStatus(std::vector<std::uint8_t> params, int count) {
+  std::lock_guard lock(mutex_);
+  injectedParams_ = std::move(params);
+  injectedCount_ = count;
+}
+
 double SimDynamixelBus::positionRad(std::uint8_t id) const {
   std::lock_guard lock(mutex_);
   return dxl::ticksToRadians(static_cast<std::int32_t>(std::lround(servos_.at(id).position)),
@@ -105,6 +111,10 @@ void SimDynamixelBus::reply(std::vector<std::uint8_t> bytes) {
   DeviceFault f = DeviceFault::kNone;
   {
     std::lock_guard lock(mutex_);
+    if (injectedCount_ > 0 && bytes.size() > 7 && bytes[7] == dxl::inst::kStatus) {
+      --injectedCount_;
+      bytes = dxl::encodePacket(bytes[4], dxl::inst::kStatus, injectedParams_);
+    }
     if (faultCount_ > 0) {
       f = fault_;
       --faultCount_;

@@ -24,6 +24,12 @@ void SimPtu::injectFault(DeviceFault fault, int count) {
   faultCount_ = count;
 }
 
+void SimPtu::injectReply(std::string line, int count) {
+  std::lock_guard lock(mutex_);
+  injectedLine_ = std::move(line);
+  injectedCount_ = count;
+}
+
 long SimPtu::position(bool pan) const {
   std::lock_guard lock(mutex_);
   return std::lround(pan ? pan_ : tilt_);
@@ -144,6 +150,10 @@ void SimPtu::run() {
           awaiting = true;  // "*" once both axes are where they were sent
         } else {
           std::string reply = handle(pending);
+          if (injectedCount_ > 0) {
+            --injectedCount_;
+            reply = injectedLine_;
+          }
           if (faultCount_ > 0) {
             --faultCount_;
             switch (fault_) {

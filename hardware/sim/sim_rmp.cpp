@@ -94,6 +94,11 @@ void SimRmp::step(Clock::time_point now) {
     for (CanFrame& fr : frames) {
       if (fault == SimRmpFault::kMissingFrame && fr.id == 0x404) continue;
       if (fault == SimRmpFault::kBadLength && fr.id == 0x402) fr.length = 3;
+      if (fault == SimRmpFault::kWildValues && fr.id == 0x402) {
+        fr.data[0] = fr.data[2] = 0x7F;
+        fr.data[1] = fr.data[3] = 0xFF;
+      }
+      if (fault == SimRmpFault::kWildValues && fr.id == 0x406) fr.data[1] = 9;
       bus_.send(fr);
     }
     bus_.send(rmp::encodeMotorStatus(enabled));

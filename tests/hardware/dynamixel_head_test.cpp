@@ -145,3 +145,14 @@ TEST(DynamixelHeadOnPty, DisconnectMidRunIsReported) {
   EXPECT_FALSE(head->health().lastFault.empty());
   head->shutdown();  // joins cleanly with the link gone
 }
+
+TEST(DynamixelHeadOnPty, DuplicateIdsAreAnError) {
+  SimDynamixelBus bus({1, 2, 3});
+  DynamixelHeadOptions o;
+  o.tiltId = 1;  // pan and tilt on one servo
+  EXPECT_THROW(openHead(bus, o), horopter::Error);
+  o = {};
+  o.leftVergenceId = 3;
+  o.rightVergenceId = 2;  // the tilt servo again
+  EXPECT_THROW(openHead(bus, o), horopter::Error);
+}

@@ -157,3 +157,20 @@ TEST(DynamixelProtocol, TicksAndRadiansForTheXSeries) {
   EXPECT_EQ(dxl::radPerSecondToVelocityUnits(1.0, x), 42);
   EXPECT_EQ(dxl::radPerSecondToVelocityUnits(0.0, x), 1);
 }
+
+TEST(DynamixelProtocol, StatusWithoutErrorByteIsNotAStatus) {
+  // A valid CRC around instruction 0x55 with no parameters: well-formed bytes, no ERROR byte.
+  const dxl::ParseResult r = dxl::parsePacket(dxl::encodePacket(1, dxl::inst::kStatus, Bytes{}));
+  ASSERT_EQ(r.outcome, dxl::ParseOutcome::kPacket);
+  EXPECT_THROW(dxl::toStatus(r.packet), horopter::Error);
+}
+
+TEST(DynamixelProtocol, PositionTicksOutsideOneTurnAreNotPositions) {
+  const dxl::ServoModel x;  // Position Control Mode: 0 .. 4095
+  EXPECT_TRUE(dxl::isPositionTick(0, x));
+  EXPECT_TRUE(dxl::isPositionTick(4095, x));
+  EXPECT_FALSE(dxl::isPositionTick(-1, x));
+  EXPECT_FALSE(dxl::isPositionTick(4096, x));
+  EXPECT_FALSE(dxl::isPositionTick(0x7FFFFFFF, x));
+  EXPECT_FALSE(dxl::isPositionTick(-0x7FFFFFFF - 1, x));
+}

@@ -63,3 +63,16 @@ TEST(PtuProtocol, ResolutionArcSecondsToRadians) {
   EXPECT_NEAR(ptu::arcSecondsToRadians(185.1428), 185.1428 / 3600 * std::numbers::pi / 180, 1e-15);
   EXPECT_NEAR(ptu::arcSecondsToRadians(3600), std::numbers::pi / 180, 1e-15);
 }
+
+// from_chars accepts "inf" and "nan"; a cast of inf (or 1e300) to long is undefined.
+TEST(PtuProtocol, NonFiniteAndHugeNumbersAreErrors) {
+  for (const char* text : {"* inf", "* -inf", "* nan", "* -nan", "* infinity", "* INF"}) {
+    EXPECT_THROW(ptu::parseNumber(ptu::parseReply(text)), horopter::Error) << text;
+    EXPECT_THROW(ptu::parseInteger(ptu::parseReply(text)), horopter::Error) << text;
+  }
+  EXPECT_THROW(ptu::parseNumber(ptu::parseReply("* 1e400")), horopter::Error);
+  for (const char* text : {"* 1e300", "* 9223372036854775807", "* -9.3e18", "* 2147483648"})
+    EXPECT_THROW(ptu::parseInteger(ptu::parseReply(text)), horopter::Error) << text;
+  EXPECT_EQ(ptu::parseInteger(ptu::parseReply("* 2147483647")), 2147483647L);
+  EXPECT_EQ(ptu::parseInteger(ptu::parseReply("* -2147483648")), -2147483648L);
+}

@@ -87,6 +87,51 @@ TEST(RmpProtocol, OtherTrafficIgnoredAndBadLengthsRejected) {
   EXPECT_THROW(rmp::decodeStatusFrame(shortFrame, rmp::scalingRmp200(), st), horopter::Error);
 }
 
+// Values no RMP reports are rejected, and a rejected frame leaves the status as it was.
+TEST(RmpProtocol, ImplausibleStatusValuesAreRejected) {
+  const rmp::Scaling s = rmp::scalingRmp200();
+  rmp::Status st;
+  st.leftWheelSpeed = 0.25;
+  st.operationalMode = 1;
+  auto rejected = [&](std::uint32_t id, std::array<std::uint8_t, 8> data, std::uint8_t length = 8) {
+    CanFrame f;
+    f.id = id;
+    f.length = length;
+    f.data = data;
+    const rmp::Status before = st;
+    bool threw = false;
+    try {
+      rmp::decodeStatusFrame(f, s, st);
+    } catch (const horopter::Error&) {
+      threw = true;
+    }
+    EXPECT_EQ(st.leftWheelSpeed, before.leftWheelSpeed);
+    EXPECT_EQ(st.operationalMode, before.operationalMode);
+    EXPECT_EQ(st.receivedMask, before.receivedMask);
+    return threw;
+  };
+  // 0x402 wheel speed 32767 counts = 98.7 m/s.
+  EXPECT_TRUE(rejected(0x402, {0x7F, 0xFF, 0, 0, 0, 0, 0, 0}));
+  // 0x401 pitch -32768 counts = -4201 deg.
+  EXPECT_TRUE(rejected(0x401, {0x80, 0x00, 0, 0, 0, 0, 0, 0}));
+  // 0x402 yaw rate 32767 counts = 4201 deg/s.
+  EXPECT_TRUE(rejected(0x402, {0, 0, 0, 0, 0x7F, 0xFF, 0, 0}));
+  // 0x406 operational mode 9 (0..3 exist), gain schedule -1 (0..2 exist).
+  EXPECT_TRUE(rejected(0x406, {0x00, 0x09, 0, 0, 0, 0, 0, 0}));
+  EXPECT_TRUE(rejected(0x406, {0x00, 0x01, 0xFF, 0xFF, 0, 0, 0, 0}));
+  // 0x407 commanded velocity -32768 counts = -98.7 m/s.
+  EXPECT_TRUE(rejected(0x407, {0x80, 0x00, 0, 0, 0, 0, 0, 0}));
+  // Lengths: 9 data bytes on any status id (CAN has at most 8), 0 on 0x405.
+  EXPECT_TRUE(rejected(0x400, {}, 9));
+  EXPECT_TRUE(rejected(0x405, {}, 0));
+  // The same frame with plausible values decodes.
+  CanFrame ok;
+  ok.id = 0x406;
+  ok.data = {0x00, 0x02, 0x00, 0x01, 0, 0, 0, 0};
+  ASSERT_TRUE(rmp::decodeStatusFrame(ok, s, st));
+  EXPECT_EQ(st.operationalMode, 2);
+}
+
 TEST(RmpProtocol, StatusEncodeDecodeRoundTrip) {
   rmp::Status in;
   in.leftWheelSpeed = 0.3;

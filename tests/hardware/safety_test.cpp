@@ -1,10 +1,13 @@
 // The base's safety rules with a fake clock (time points we choose; nothing
 // sleeps, nothing reads the wall clock): watchdog, velocity and acceleration
 // limits, latching e-stop; then the same rules through the RMP driver on the
-// in-process CAN bus with the simulated RMP, stepped by hand.
+// in-process CAN bus with the simulated RMP, stepped by hand; last the
+// watchdog in real time, both threads running.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <thread>
 
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
@@ -172,16 +175,26 @@ TEST(RmpDriverSafety, OdometryFollowsCommandsThroughTheRealFrames) {
   EXPECT_EQ(rig.sim.truth().resets, 4);  // the four reset-integrator commands at start
 }
 
-TEST(RmpDriverSafety, WatchdogStopsTheBaseWhenCommandsStop) {
+// The bound as stated: frames sent while the last command is at most 200 ms
+// old carry it; the first frame after that carries zero, and the simulated
+// RMP stands still from its next cycle (10 ms ticks here).
+TEST(RmpDriverSafety, WatchdogStopsTheBaseWithin200msOfTheLastCommand) {
   SteppedRig rig(fastLimits());
   rig.run(500ms, BaseVelocity{0.3, 0.0});
-  EXPECT_NEAR(rig.base.health().lastSent.linear, 0.3, 1e-9);
-  // No command for 300 ms of fake time: the 200 ms watchdog must have stopped it.
-  rig.run(300ms);
+  rig.base.command({0.3, 0.0});
+  const Clock::time_point last = rig.now;
+  while (rig.now < last + 200ms) {
+    rig.tick();
+    EXPECT_NEAR(rig.base.health().lastSent.linear, 0.3, 1e-9)
+        << "stopped early, " << (rig.now - last) / 1ms << " ms after the last command";
+  }
+  EXPECT_EQ(rig.base.health().watchdogTrips, 0);
+  rig.tick();  // the first step later than 200 ms
   EXPECT_EQ(rig.base.health().lastSent.linear, 0.0);
-  EXPECT_GE(rig.base.health().watchdogTrips, 1);
-  rig.run(50ms);
-  EXPECT_NEAR(rig.sim.truth().velocity.linear, 0.0, 1e-9);
+  EXPECT_EQ(rig.base.health().watchdogTrips, 1);
+  rig.tick();  // the RMP reads that frame on its next cycle
+  EXPECT_EQ(rig.sim.truth().velocity.linear, 0.0);
+  EXPECT_EQ(rig.now - last, 220ms);
 }
 
 TEST(RmpDriverSafety, StatusTimeoutIsReportedAndStopsTheBase) {
@@ -258,4 +271,47 @@ TEST(RmpDriverSafety, TheRmpsOwnEmergencyStopIsReported) {
   EXPECT_EQ(h.motorsEnabled, false);
   EXPECT_NE(h.lastFault.find("e-stop is pressed"), std::string::npos);
   EXPECT_EQ(rig.base.odometry()->velocity.linear, 0.0);
+}
+
+// What `horopter base --help` says about stopping: zero commanded at the
+// default 0.5 m/s^2 ramps down from 0.4 m/s in 0.8 s over 0.16 m.
+TEST(RmpDriverSafety, AZeroCommandRampsDownAtTheAccelerationLimit) {
+  SteppedRig rig(BaseSafetyLimits{});
+  rig.run(1500ms, BaseVelocity{0.4, 0.0});
+  ASSERT_NEAR(rig.sim.truth().velocity.linear, 0.4, 1.0 / 332);
+  const double x0 = rig.sim.truth().x;
+  const Clock::time_point t0 = rig.now;
+  while (rig.sim.truth().velocity.linear > 0 && rig.now < t0 + 3s)
+    rig.run(10ms, BaseVelocity{0.0, 0.0});
+  EXPECT_NEAR(std::chrono::duration<double>(rig.now - t0).count(), 0.8, 0.03);
+  EXPECT_NEAR(rig.sim.truth().x - x0, 0.16, 0.01);
+}
+
+// Real time, both threads running (driver at 50 Hz, RMP at 100 Hz): the base
+// stands still 200 ms after the last command, plus at most one driver period,
+// one RMP cycle and some scheduling slack for a loaded machine.
+TEST(RmpDriverSafetyRealTime, WatchdogStopsTheBaseAbout200msAfterTheLastCommand) {
+  InProcessCanBus bus;
+  SimRmp sim(bus.deviceSide());
+  RmpBaseOptions o;
+  o.limits = fastLimits();
+  RmpBase base(bus.takeHostSide(), o);
+  const auto until = Clock::now() + 600ms;
+  while (Clock::now() < until) {
+    base.command({0.3, 0.0});
+    std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_NEAR(sim.truth().velocity.linear, 0.3, 1.0 / 332);
+  base.command({0.3, 0.0});
+  const Clock::time_point last = Clock::now();
+  Clock::time_point stopped = last;
+  while (sim.truth().velocity.linear != 0.0 && Clock::now() < last + 2s) {
+    std::this_thread::sleep_for(1ms);
+    stopped = Clock::now();
+  }
+  const auto ms = std::chrono::duration<double, std::milli>(stopped - last).count();
+  std::printf("base stood still %.1f ms after the last command\n", ms);
+  EXPECT_GE(ms, 200.0 - 1.0);  // never earlier than the watchdog allows
+  EXPECT_LE(ms, 200.0 + 20 + 10 + 40);
+  EXPECT_EQ(base.health().watchdogTrips, 1);
 }

@@ -7,9 +7,11 @@
 // period: when the target changed, a Sync Write of Profile Velocity (if the
 // speed changed) and of Goal Position; always a Sync Read of Present
 // Position, whose replies become the time-stamped measurement. Each exchange
-// is retried (`retries`) on a timeout or a corrupt reply; `linkLostAfter`
-// failed cycles in a row mark the link down in health(). The latest command
-// wins; command() and measured() never wait for the bus.
+// is retried (`retries`) on a timeout or a malformed reply (bad CRC, no ERROR
+// byte, the wrong number of data bytes, ticks outside the Position Control
+// Mode range): each counted in health(), never thrown, never an angle;
+// `linkLostAfter` failed cycles in a row mark the link down. IDs must differ.
+// The latest command wins; command() and measured() never wait for the bus.
 //
 // Vergence (a head with left and right eye servos): the total angle v is
 // split equally, left eye +v/2, right eye -v/2 (both turn inward for v > 0,
@@ -18,6 +20,7 @@
 
 #include "horopter/core/export.hpp"
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -65,10 +68,16 @@ class HOROPTER_API DynamixelHead final : public Head {
   void shutdown();
 
  private:
+  // Why a reply's data is implausible, or "" when it is fine.
+  using StatusCheck = std::function<std::string(const dxl::Status&)>;
+
   void readServoLimits();
   void cycle();
   std::vector<dxl::Status> exchange(const std::vector<std::uint8_t>& request,
-                                    const std::vector<std::uint8_t>& ids);
+                                    const std::vector<std::uint8_t>& ids, std::size_t dataLength,
+                                    const StatusCheck& check = {});
+  // Present Position of every servo in ID order, each checked; empty on failure.
+  std::vector<std::int32_t> readPresentTicks();
   void fail(const std::string& what);
   std::vector<std::pair<std::uint8_t, std::int32_t>> goalTicks(const HeadAngles& a) const;
   HeadAngles anglesFromTicks(const std::vector<std::int32_t>& ticks) const;

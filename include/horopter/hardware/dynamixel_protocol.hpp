@@ -121,8 +121,16 @@ struct HOROPTER_API ServoModel {
   std::uint16_t presentVelocityAddress = 128;  // 4 bytes
   std::uint16_t presentPositionAddress = 132;  // 4 bytes
   double velocityUnitRpm = 0.229;
+  // Position Control Mode range of Goal/Present Position and of the position
+  // limits (one turn); the multi-turn modes are not used by the head.
+  std::int32_t minPositionTick = 0;
+  std::int32_t maxPositionTick = 4095;
+  std::int32_t maxVelocityLimit = 1023;  // Velocity Limit (44) range 0 .. 1023
 };
 
+// True for ticks within the model's Position Control Mode range: anything else
+// (0x7FFFFFFF, -1) is not a position this servo reports, never an angle.
+HOROPTER_API bool isPositionTick(std::int32_t ticks, const ServoModel& model);
 HOROPTER_API double ticksToRadians(std::int32_t ticks, const ServoModel& model);
 HOROPTER_API std::int32_t radiansToTicks(double radians, const ServoModel& model);
 // Profile Velocity units for a speed in rad/s (at least 1: 0 means "no limit").

@@ -7,12 +7,15 @@
 // PN/PX/TN/TX limits (the head's limits become the intersection of the
 // options' and the unit's). Then its own thread, every period: on a new
 // target PS/TS speeds and PP/TP positions, on halt() H; always PP and TP
-// queries, which become the time-stamped measurement. Replies that time out
-// or do not parse are retried and counted; "!P"/"!T" limit hits are reported.
+// queries, which become the time-stamped measurement. Replies that time out,
+// do not parse, or report a position outside the unit's own limits (by more
+// than a tenth of the range) are retried and counted, never an angle;
+// "!P"/"!T" limit hits are reported.
 #pragma once
 
 #include "horopter/core/export.hpp"
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -58,14 +61,19 @@ class HOROPTER_API PtuHead final : public Head {
   void shutdown();
 
  private:
-  std::optional<ptu::Reply> exchange(const std::string& command);
+  // Why an answer's value is implausible, or "" when it is fine.
+  using ReplyCheck = std::function<std::string(const ptu::Reply&)>;
+
+  std::optional<ptu::Reply> exchange(const std::string& command, const ReplyCheck& check = {});
   ptu::Reply require(const std::string& command);  // throws horopter::Error (set-up only)
+  std::string positionProblem(const ptu::Reply& reply, ptu::Axis axis) const;
   void cycle();
 
   std::unique_ptr<ByteTransport> transport_;
   PtuHeadOptions options_;
   HeadLimits limits_;
-  double panRes_ = 0, tiltRes_ = 0;  // rad per position
+  double panRes_ = 0, tiltRes_ = 0;                           // rad per position
+  long panMin_ = 0, panMax_ = 0, tiltMin_ = 0, tiltMax_ = 0;  // the unit's limits, positions
   std::string rx_;
   long sentGeneration_ = 0;  // thread-only; nothing is sent before the first command()
 

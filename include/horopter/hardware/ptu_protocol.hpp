@@ -58,7 +58,8 @@ HOROPTER_API std::optional<std::string> takeLine(std::string& buffer);
 // "*..." nor "!..." (garbage on the line).
 HOROPTER_API Reply parseReply(std::string_view line);
 
-// The number in a query reply; throws horopter::Error if it is not one.
+// The number in a query reply; throws horopter::Error if it is not one, or
+// not finite ("inf", "nan"), or for an integer beyond 32 bits.
 HOROPTER_API double parseNumber(const Reply& reply);
 HOROPTER_API long parseInteger(const Reply& reply);
 

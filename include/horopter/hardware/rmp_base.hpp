@@ -44,7 +44,7 @@ struct HOROPTER_API BaseHealth {
   bool watchdogTripped = false;
   long watchdogTrips = 0;
   long statusTimeouts = 0;  // transitions fresh -> stale (or none at start)
-  long badFrames = 0;       // status frames that did not decode
+  long badFrames = 0;       // status frames with a wrong length or implausible values
   long framesSent = 0;
   long seriesReceived = 0;
   // The RMP's own motor status (0x680): false while its e-stop button is pressed.
@@ -85,6 +85,7 @@ class HOROPTER_API RmpBase final : public Base {
   mutable std::mutex mutex_;  // everything below
   VelocityGovernor governor_;
   rmp::Status partial_;
+  bool partialHasBadFrame_ = false;  // a frame of this series was rejected
   std::optional<rmp::Status> status_;
   std::optional<Odometry> odometry_;
   double lastForeAft_ = 0, lastYaw_ = 0;

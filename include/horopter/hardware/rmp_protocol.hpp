@@ -49,6 +49,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <string>
@@ -123,9 +124,16 @@ struct HOROPTER_API Status {
   unsigned receivedMask = 0;       // bit (id - 0x400) per frame decoded in this series
 };
 
+// Bounds no RMP of this family comes near; a status beyond them is garbage.
+constexpr double kMaxPlausibleSpeed = 10.0;                            // m/s (36 km/h)
+constexpr double kMaxPlausibleRate = 1000.0 * std::numbers::pi / 180;  // rad/s (1000 deg/s)
+
 // Decodes one status frame into `status`; false for ids outside 0x400..0x407
-// (other traffic on the bus). Throws horopter::Error for a status id with the
-// wrong length.
+// (other traffic on the bus). Throws horopter::Error, leaving `status` as it
+// was, for a status frame with the wrong length (8 data bytes, 0x400 up to 8)
+// or an implausible value: |pitch|, |roll| > 180 deg, a rate beyond
+// kMaxPlausibleRate, a wheel or commanded speed beyond kMaxPlausibleSpeed, an
+// operational mode outside 0..3, a gain schedule outside 0..2.
 HOROPTER_API bool decodeStatusFrame(const CanFrame& frame, const Scaling& scaling, Status& status);
 // The 0x680 motor status: true when the motors are enabled, false when the
 // RMP's own e-stop is pressed; nullopt for any other frame.

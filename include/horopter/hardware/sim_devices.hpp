@@ -33,6 +33,10 @@ class SimDynamixelBus {
 
   const std::string& port() const { return pty_.slavePath(); }
   void injectFault(DeviceFault fault, int count = 1);
+  // The next `count` status replies become status packets from the same ID,
+  // with a valid CRC and these parameters instead (the ERROR byte first; empty:
+  // no ERROR byte at all): a device that talks the protocol but says nonsense.
+  void injectStatus(std::vector<std::uint8_t> params, int count = 1);
   double positionRad(std::uint8_t id) const;
   std::int32_t goalTicks(std::uint8_t id) const;
   bool torqueOn(std::uint8_t id) const;
@@ -64,6 +68,8 @@ class SimDynamixelBus {
   std::map<std::uint8_t, Servo> servos_;
   DeviceFault fault_ = DeviceFault::kNone;
   int faultCount_ = 0;
+  std::vector<std::uint8_t> injectedParams_;
+  int injectedCount_ = 0;
   std::atomic<long> packets_{0}, corruptIn_{0};
   std::atomic<bool> stop_{false};
   std::thread thread_;
@@ -84,6 +90,9 @@ class SimPtu {
 
   const std::string& port() const { return pty_.slavePath(); }
   void injectFault(DeviceFault fault, int count = 1);
+  // The next `count` replies are this line instead (e.g. "* inf"): a unit that
+  // speaks the grammar but says nonsense.
+  void injectReply(std::string line, int count = 1);
   long position(bool pan) const;
   long commandsReceived() const { return commands_; }
 
@@ -100,6 +109,8 @@ class SimPtu {
   bool echo_ = true, terse_ = false;
   DeviceFault fault_ = DeviceFault::kNone;
   int faultCount_ = 0;
+  std::string injectedLine_;
+  int injectedCount_ = 0;
   std::atomic<long> commands_{0};
   std::atomic<bool> stop_{false};
   std::thread thread_;

@@ -22,6 +22,7 @@ enum class SimRmpFault {
   kSilent,        // sends no status (the driver must time out)
   kBadLength,     // a status frame with 3 data bytes
   kMissingFrame,  // a series without 0x404
+  kWildValues,    // 0x402 with wheel speeds of 32767 counts (99 m/s), 0x406 with mode 9
 };
 
 struct SimRmpOptions {
