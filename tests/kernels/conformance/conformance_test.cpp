@@ -358,6 +358,19 @@ std::vector<MatchCase> matchCases() {
       cases.push_back({numD + 60 + k, 14, p, kPatterns[k % 5], shift, k % 2 == 0});
       ++k;
     }
+    // HD widths at 128 disparities and block 15 (the 1280x720 target): rows
+    // of costs padded to an odd number of cache lines, nine tiles per row
+    // pass with a partial last one, both signs of the range's start.
+    for (int w : {1280, 1281, 1296, 1311, 1327}) {
+      StereoParams p;
+      p.numDisparities = 128;
+      p.blockSize = 15;
+      p.minDisparity = (k % 2 == 0) ? 0 : -20;
+      p.textureThreshold = (k % 3 == 0) ? 0 : 10;
+      const int shift = p.minDisparity + 37 + k;
+      cases.push_back({w, 15 + k % 4, p, kPatterns[k % 5], shift, k % 4 != 3});
+      ++k;
+    }
     for (int blockSize : {15, 17, 25, 33, 51}) {
       for (Pattern pattern : {Pattern::Saturated, Pattern::Textured}) {
         for (bool prefiltered : {false, true}) {
