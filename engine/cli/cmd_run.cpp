@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <opencv2/highgui.hpp>
 #include <opencv2/videoio.hpp>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "io/disparity_images.hpp"
 #include "json_text.hpp"
 #include "run_annotation.hpp"
+#include "video_recorder.hpp"
 
 namespace horopter::cli {
 
@@ -123,7 +125,9 @@ const char* kRunHelpEnd =
     "  --trace FILE       Chrome trace events (open in Perfetto or chrome://tracing)\n"
     "  --json             print the summary as one JSON object on stdout\n"
     "  --display          show the annotated frames in a window (needs a display)\n"
-    "  --no-video         do not write run.avi\n\n";
+    "  --no-video         do not write run.avi\n"
+    "  --video-scale N    run.avi at 1/N of the view's width and height, 1..8 (default 1);\n"
+    "                     the video is encoded on its own thread, the stills stay full size\n\n";
 
 // What `horopter run` does: the pipeline's configuration and the CLI's own
 // choices (output, the model file, the simulated robot).
@@ -137,6 +141,7 @@ struct RunJob {
   std::string outDir = "out";
   std::string trace;
   bool json = false, display = false, video = true;
+  int videoScale = 1;  // the video's width and height are the view's divided by this
   std::string model;
   bool movement = true;
   std::string robot = "none";
@@ -187,6 +192,7 @@ RunJob parseRun(Args& args) {
   job.json = args.flag("--json");
   job.display = args.flag("--display");
   job.video = !args.flag("--no-video");
+  job.videoScale = args.intValue("--video-scale", job.videoScale, 1, 8);
   c.zone.fixationDisparityPx = args.optionalDouble("--fixation-disparity");
   c.zone.focalPx = args.optionalDouble("--focal-px");
   c.zone.calib = args.stringValue("--calib", "");
@@ -244,16 +250,7 @@ class Output {
   // and closes the video.
   void finish() {
     if (!lastView_.empty()) writeStill(lastView_, lastIndex_);
-    if (writer_.isOpened()) {
-      writer_.release();
-      // cv::VideoWriter reports no write error: a missing or empty file at
-      // least is caught (a disk that filled up mid-video is not).
-      const std::string path = job_.outDir + "/run.avi";
-      std::error_code ec;
-      const auto size = std::filesystem::file_size(path, ec);
-      if (ec) detail::throwWriteError("video", path, ec.value());
-      if (size == 0) detail::throwWriteError("video", path, 0);
-    }
+    if (video_) video_->close();
   }
 
   std::int64_t framesDone() const { return done_; }
@@ -290,12 +287,9 @@ class Output {
   }
 
   void writeVideo(const cv::Mat& view) {
-    if (!writer_.isOpened()) {
-      const std::string path = job_.outDir + "/run.avi";
-      if (!writer_.open(path, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, view.size()))
-        throw Error("cannot write the video '" + path + "' (no MJPG encoder in this OpenCV?)");
-    }
-    writer_.write(view);
+    if (!video_)
+      video_ = std::make_unique<VideoRecorder>(job_.outDir + "/run.avi", 30, job_.videoScale);
+    video_->write(view);
   }
 
   void progress(double fps) {
@@ -316,7 +310,7 @@ class Output {
   std::int64_t expected_, done_ = 0;
   bool tty_ = false, shown_ = false;
   SteadyClock::time_point start_;
-  cv::VideoWriter writer_;
+  std::unique_ptr<VideoRecorder> video_;
   cv::Mat lastView_;
   std::int64_t lastIndex_ = 0;
 };
