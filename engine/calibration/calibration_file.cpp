@@ -4,6 +4,7 @@
 #include <opencv2/core/persistence.hpp>
 #include <string>
 
+#include "calibration/calibration_checks.hpp"
 #include "file_output.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
@@ -179,6 +180,7 @@ StereoCalibration loadStereoCalibration(const std::string& path) {
   }
   for (const cv::FileNode& s : in.storage()["skipped"])
     c.skipped.push_back(static_cast<std::string>(s));
+  checkCalibration(c, path);  // the meanings, once the structure is read
   return c;
 }
 
