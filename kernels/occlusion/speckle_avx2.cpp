@@ -53,7 +53,7 @@ struct Scratch {
   std::vector<std::int32_t> runStart;  // per run, first x
   std::vector<std::int32_t> runEnd;    // per run, last x
   std::vector<std::int32_t> parent;    // per run, union-find parent (then root)
-  std::vector<std::int32_t> count;     // per root run, pixels of its blob
+  std::vector<std::int64_t> count;     // per root run, pixels of its blob (past 2^31 in huge maps)
   std::vector<std::int32_t> rowBegin;  // first run of each row, plus the total
 };
 
@@ -172,7 +172,7 @@ HOROPTER_AVX2_TARGET void filterSpeckles(const ImageView& disparity, const Stere
   std::int32_t* runStart = s.runStart.data();
   std::int32_t* runEnd = s.runEnd.data();
   std::int32_t* parent = s.parent.data();
-  std::int32_t* count = s.count.data();
+  std::int64_t* count = s.count.data();
   const __m256i invalidV = _mm256_set1_epi16(invalid);
   const __m256i rangeV =
       _mm256_set1_epi16(static_cast<std::int16_t>(std::min(params.speckleRange, 0xFFFF)));

@@ -26,21 +26,22 @@ void filterSpeckles(const ImageView& disparity, const StereoParams& params) {
 
   // Flood fill with an explicit stack; `seen` marks pixels already in a blob.
   std::vector<std::uint8_t> seen(static_cast<std::size_t>(width) * height, 0);
-  std::vector<int> stack;
-  std::vector<int> blob;
+  // Pixel indices in 64 bits: a map past 2^31 pixels must not wrap.
+  std::vector<std::size_t> stack;
+  std::vector<std::size_t> blob;
   for (int y0 = 0; y0 < height; ++y0) {
     for (int x0 = 0; x0 < width; ++x0) {
       const std::size_t start = static_cast<std::size_t>(y0) * width + x0;
       if (seen[start] || at(x0, y0) == invalid) continue;
       seen[start] = 1;
-      stack.assign(1, static_cast<int>(start));
+      stack.assign(1, start);
       blob.clear();
       while (!stack.empty()) {
-        const int p = stack.back();
+        const std::size_t p = stack.back();
         stack.pop_back();
         blob.push_back(p);
-        const int x = p % width;
-        const int y = p / width;
+        const int x = static_cast<int>(p % static_cast<std::size_t>(width));
+        const int y = static_cast<int>(p / static_cast<std::size_t>(width));
         const int value = at(x, y);
         const int nx[4] = {x - 1, x + 1, x, x};
         const int ny[4] = {y, y, y - 1, y + 1};
@@ -51,12 +52,13 @@ void filterSpeckles(const ImageView& disparity, const StereoParams& params) {
           if (seen[q] || other == invalid || std::abs(other - value) > params.speckleRange)
             continue;
           seen[q] = 1;
-          stack.push_back(static_cast<int>(q));
+          stack.push_back(q);
         }
       }
-      if (static_cast<int>(blob.size()) <= params.speckleWindowSize) {
-        for (int p : blob)
-          at(p % width, p / width) = invalid;
+      if (blob.size() <= static_cast<std::size_t>(params.speckleWindowSize)) {
+        for (const std::size_t p : blob)
+          at(static_cast<int>(p % static_cast<std::size_t>(width)),
+             static_cast<int>(p / static_cast<std::size_t>(width))) = invalid;
       }
     }
   }
