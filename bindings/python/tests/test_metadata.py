@@ -1,5 +1,6 @@
-"""One version everywhere: include/horopter/version.h, horopter.__version__,
-`horopter --version` and the package metadata (pyproject.toml)."""
+"""The package's metadata: one version everywhere (include/horopter/version.h,
+horopter.__version__, `horopter --version`, pyproject.toml), and the
+Apache-2.0 licence in LICENSE and pyproject.toml."""
 import os
 import re
 import subprocess
@@ -40,3 +41,16 @@ def test_cli_version_is_the_modules(cli):
     for flag in ("--version", "-V"):
         out = subprocess.run([cli, flag], check=True, capture_output=True, text=True).stdout
         assert out == f"horopter {horopter.__version__}\n"
+
+
+def test_license_is_apache_2(source_dir):
+    license_file = os.path.join(source_dir, "LICENSE")
+    pyproject = os.path.join(source_dir, "bindings", "python", "pyproject.toml")
+    if not os.path.exists(license_file) or not os.path.exists(pyproject):
+        return  # an installed module may run without the sources
+    with open(license_file) as f:
+        text = f.read()
+    assert "Apache License" in text and "Version 2.0, January 2004" in text
+    assert "END OF TERMS AND CONDITIONS" in text
+    with open(pyproject) as f:
+        assert 'license = {text = "Apache-2.0"}' in f.read()
