@@ -70,7 +70,8 @@ int runPair(const PairJob& job) {
   std::printf(
       "front end %.1f ms (prefilter %.1f, match %.1f, cleanup %.1f, median %.1f, mask %.1f)\n"
       "horopter: fixation disparity %.1f px at the centre column; %.1f%% of pixels inside\n"
-      "wrote %s/{disparity.png, disparity_color.png, mask.png, segmented.png}\n",
+      "wrote %s/{disparity.png, disparity16.png, disparity.pfm, disparity_color.png, mask.png, "
+      "segmented.png}\n",
       t.total(), t.prefilter, t.match, t.cleanup, t.median, t.mask, fixation, inside,
       job.outDir.c_str());
   return 0;
@@ -85,7 +86,9 @@ const char* kPairHelpTail =
     "Other:\n"
     "  --backend B              scalar, avx2 or auto (default auto; see horopter devices)\n"
     "  -o, --out DIR            output folder (default out)\n"
-    "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid), DIR/disparity_color.png\n"
+    "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid or <= 0), DIR/disparity16.png\n"
+    "(16-bit, 1/16 px + 32768, 0 = invalid: keeps negative disparities),\n"
+    "DIR/disparity.pfm (Middlebury PFM, float px, inf = invalid), DIR/disparity_color.png\n"
     "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
     "DIR/segmented.png (the left image, zeroed outside the zone).\n";
 

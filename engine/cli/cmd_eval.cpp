@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/stereo_eval.hpp"
+#include "io/disparity_images.hpp"
 #include "json_text.hpp"
 #include "report_format.hpp"
 
@@ -36,7 +37,9 @@ int runEvalStereo(Args& args) {
            "truth: bad-1.0 and bad-2.0 (% of pixels with ground truth whose error exceeds 1 or\n"
            "2 px; invalid outputs count as bad), avgerr (mean |error| in px over valid outputs),\n"
            "density (% of pixels with ground truth that have a valid output) and ms per frame.\n"
-           "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown.\n\n"
+           "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown; or\n"
+           "Middlebury's PFM (float px, inf = unknown; --gt-scale defaults to 1), such as\n"
+           "the disparity.pfm that horopter disparity writes.\n\n"
         << stereoFlagsHelp(StereoParams{}, MedianParams{})
         << "Other:\n"
            "  --backend B              scalar, avx2, opencl, opencl:N or auto (default auto)\n"
@@ -51,7 +54,7 @@ int runEvalStereo(Args& args) {
   const std::string left = args.stringValue("--left", "");
   const std::string right = args.stringValue("--right", "");
   const std::string gt = args.stringValue("--gt", "");
-  const double scale = args.doubleValue("--gt-scale", 0);
+  const std::optional<double> scaleGiven = args.optionalDouble("--gt-scale");
   const StereoParams stereo = parseStereoFlags(args, StereoParams{});
   const MedianParams median = parseMedianFlags(args, MedianParams{});
   const std::string backendName = args.stringValue("--backend", "auto");
@@ -65,6 +68,8 @@ int runEvalStereo(Args& args) {
 
   if (left.empty() || right.empty() || gt.empty())
     throw Error("eval-stereo needs --left, --right and --gt: see horopter eval-stereo --help");
+  // PFM ground truth is in px: its scale defaults to 1.
+  const double scale = scaleGiven ? *scaleGiven : (isPfmFile(gt) ? 1.0 : 0.0);
   if (scale <= 0)
     throw Error("eval-stereo needs --gt-scale S > 0 (disparity = ground-truth value / S)");
   if (!peer.empty() && peer != "opencv")

@@ -6,11 +6,13 @@
 
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
+#include "horopter/version.h"
 
 namespace {
 
 const char* kUsage =
-    "Usage: horopter COMMAND [options]   (horopter COMMAND --help for its options)\n\n"
+    "Usage: horopter COMMAND [options]   (horopter COMMAND --help for its options)\n"
+    "       horopter --version             (or -V: the version, then exit)\n\n"
     "Horopter: a stereo vision engine that keeps only what lies inside the robot's zone\n"
     "of interaction (the Vieth-Mueller circle through both cameras and the fixation point).\n\n"
     "Commands:\n"
@@ -47,6 +49,14 @@ int main(int argc, char** argv) {
       !std::strcmp(argv[1], "help")) {
     std::cout << kUsage;
     return argc < 2 ? 2 : 0;
+  }
+  if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "-V")) {
+    if (argc > 2) {
+      std::cerr << "horopter: --version takes no arguments\n";
+      return 2;
+    }
+    std::cout << "horopter " << HOROPTER_VERSION_STRING << "\n";
+    return 0;
   }
   const std::string command = argv[1];
   Args args(argc, argv, 2);

@@ -10,6 +10,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "io/disparity_images.hpp"
 
 namespace horopter {
 
@@ -69,6 +70,16 @@ cv::Mat loadGroundTruth(const std::string& path, double scale) {
   if (!(scale > 0))
     throw Error("ground-truth scale must be positive, got " + std::to_string(scale));
   requireFile(path, "ground truth");
+  if (isPfmFile(path)) {
+    // Middlebury's float ground truth, in px: inf (or NaN) = unknown.
+    cv::Mat px = readPfm(path);
+    for (int y = 0; y < px.rows; ++y) {
+      auto* p = px.ptr<float>(y);
+      for (int x = 0; x < px.cols; ++x)
+        p[x] = std::isfinite(p[x]) ? static_cast<float>(p[x] / scale) : 0.0f;
+    }
+    return px;
+  }
   const cv::Mat raw = cv::imread(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
   if (raw.empty()) throw Error("ground truth '" + path + "' could not be decoded");
   if (raw.depth() != CV_8U && raw.depth() != CV_16U)

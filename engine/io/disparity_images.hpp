@@ -20,13 +20,41 @@ void writeImageFile(const std::string& path, const cv::Mat& image,
                     const std::string& what = "image");
 
 // 16-bit PNG in 1/16 px as OpenCV's maps; invalid pixels (and disparities
-// <= 0) are written as 0, the usual "unknown".
+// <= 0) are written as 0, the usual "unknown". Kept for the readers that
+// expect it; disparity16.png and disparity.pfm keep the negative ones.
 void writeDisparityPng(const std::string& path, const ConstImageView& disparity,
                        std::int16_t invalid);
 
-// Writes disparity.png, disparity_color.png, and, when the front end has a
-// mask, mask.png and segmented.png into `dir` (created if missing). Throws
-// horopter::Error if a file cannot be written.
+// Signed, sub-pixel disparities in a 16-bit PNG ("disparity16.png"): each
+// pixel holds d16 + 32768, d16 the disparity in 1/16 px, and 0 means invalid
+// (a d16 of -32768 is written as -32767). Decode: d_px = (value - 32768) / 16
+// where value != 0. Every int16 disparity but -32768 round-trips exactly.
+constexpr int kDisparity16Offset = 32768;
+cv::Mat encodeDisparity16(const ConstImageView& disparity, std::int16_t invalid);
+void writeDisparity16Png(const std::string& path, const ConstImageView& disparity,
+                         std::int16_t invalid);
+// Reads a disparity16.png back as CV_16SC1 in 1/16 px, writing `invalid`
+// where the file holds 0. Throws horopter::Error naming the file when it is
+// missing, not 16-bit single-channel, or not decodable.
+cv::Mat readDisparity16Png(const std::string& path, std::int16_t invalid);
+
+// Middlebury's PFM: float32 in px, grey ("Pf"), rows stored bottom to top,
+// little-endian (scale -1). writePfm writes a CV_32FC1 image as is;
+// writeDisparityPfm converts a 1/16 px disparity map to px with +inf where it
+// is invalid, as Middlebury's ground truth marks unknown pixels.
+void writePfm(const std::string& path, const cv::Mat& image);
+void writeDisparityPfm(const std::string& path, const ConstImageView& disparity,
+                       std::int16_t invalid);
+// Reads a PFM file ("Pf" grey, or "PF" colour, whose first channel is taken),
+// either byte order, into CV_32FC1 top row first; inf and NaN are kept.
+// Throws horopter::Error naming the file on a malformed or short file.
+cv::Mat readPfm(const std::string& path);
+// True if the file at `path` starts with a PFM signature ("Pf" or "PF").
+bool isPfmFile(const std::string& path);
+
+// Writes disparity.png, disparity16.png, disparity.pfm, disparity_color.png,
+// and, when the front end has a mask, mask.png and segmented.png into `dir`
+// (created if missing). Throws horopter::Error if a file cannot be written.
 void writeFrontendOutputs(const std::string& dir, const StereoFrontend& frontend);
 
 }  // namespace horopter

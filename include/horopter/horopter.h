@@ -21,6 +21,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "version.h" /* HOROPTER_VERSION_MAJOR, _MINOR, _PATCH, _STRING, _NUMBER */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -37,7 +39,9 @@ typedef enum horopter_status {
 const char* horopter_last_error(void);
 /* "ok", "invalid argument", "failed", "out of memory", "internal error". */
 const char* horopter_status_name(horopter_status status);
-/* The library's version, "MAJOR.MINOR.PATCH". */
+/* The library's version, "MAJOR.MINOR.PATCH": the HOROPTER_VERSION_STRING
+ * the library was built with (compare it with the header's to detect a
+ * mismatched libhoropter). */
 const char* horopter_version(void);
 
 /* ---- Images ------------------------------------------------------------ */

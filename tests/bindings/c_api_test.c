@@ -35,6 +35,14 @@ static void make_pair(unsigned char* left, unsigned char* right, int w, int h, i
 
 static void test_version_and_backends(void) {
   CHECK(strlen(horopter_version()) >= 5);
+  /* The library's version is the header's (horopter/version.h, through horopter.h). */
+  CHECK(strcmp(horopter_version(), HOROPTER_VERSION_STRING) == 0);
+  char numbers[32];
+  snprintf(numbers, sizeof numbers, "%d.%d.%d", HOROPTER_VERSION_MAJOR, HOROPTER_VERSION_MINOR,
+           HOROPTER_VERSION_PATCH);
+  CHECK(strcmp(numbers, HOROPTER_VERSION_STRING) == 0);
+  CHECK(HOROPTER_VERSION_NUMBER ==
+        HOROPTER_VERSION_MAJOR * 10000 + HOROPTER_VERSION_MINOR * 100 + HOROPTER_VERSION_PATCH);
   const int n = horopter_backend_count();
   CHECK(n >= 1);
   int scalar_found = 0;

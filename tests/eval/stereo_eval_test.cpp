@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include "horopter/eval/stereo_eval.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "io/disparity_images.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {
@@ -151,6 +153,27 @@ TEST(Eval, LoadGroundTruthDividesByScale) {
           ASSERT_FLOAT_EQ(px.at<float>(y, x), static_cast<float>(v / scale)) << name;
         }
     }
+  }
+}
+
+// Middlebury's PFM ground truth: float px divided by the scale, inf = unknown.
+TEST(Eval, LoadGroundTruthReadsPfm) {
+  TempDir dir;
+  cv::Mat px(3, 4, CV_32FC1);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x)
+      px.at<float>(y, x) = 10.25f * y + x + 0.5f;
+  px.at<float>(1, 2) = std::numeric_limits<float>::infinity();
+  const std::string path = dir.file("gt.pfm");
+  writePfm(path, px);
+  for (double scale : {1.0, 2.0}) {
+    const cv::Mat gt = loadGroundTruth(path, scale);
+    ASSERT_EQ(gt.type(), CV_32FC1);
+    ASSERT_EQ(gt.size(), px.size());
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 4; ++x)
+        EXPECT_FLOAT_EQ(gt.at<float>(y, x),
+                        y == 1 && x == 2 ? 0.0f : static_cast<float>(px.at<float>(y, x) / scale));
   }
 }
 

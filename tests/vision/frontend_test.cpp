@@ -2,8 +2,12 @@
 // reused correctly across frames and sizes, masks and segmentation.
 #include <unistd.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -283,6 +287,19 @@ TEST(Frontend, WritesItsOutputsAsImages) {
     }
   }
   EXPECT_GT(invalid, 0);
+  // disparity16.png and disparity.pfm give back the map itself, invalid kept.
+  const cv::Mat back16 = readDisparity16Png((dir / "disparity16.png").string(), inv);
+  EXPECT_TRUE(sameImage(frontend.disparity().view(), viewOf(back16)));
+  const cv::Mat pfm = readPfm((dir / "disparity.pfm").string());
+  ASSERT_EQ(pfm.size(), cv::Size(w, h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::int16_t d = frontend.disparity().row<std::int16_t>(y)[x];
+      if (d == inv)
+        ASSERT_TRUE(std::isinf(pfm.at<float>(y, x))) << x << "," << y;
+      else
+        ASSERT_EQ(pfm.at<float>(y, x), d / 16.0f) << x << "," << y;
+    }
   // disparity_color.png: black where invalid, coloured elsewhere.
   const cv::Mat colourPng = cv::imread((dir / "disparity_color.png").string(), cv::IMREAD_COLOR);
   ASSERT_EQ(colourPng.size(), cv::Size(w, h));
@@ -316,6 +333,110 @@ TEST(Frontend, DisparityPngWritesUnknownAsZero) {
   const int want[7] = {0, 0, 0, 5, 300, 32767, 0};
   for (int x = 0; x < 7; ++x)
     EXPECT_EQ(png.at<std::uint16_t>(0, x), want[x]) << x;
+}
+
+std::filesystem::path tempFile(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("horopter-test-" + std::to_string(::getpid()) + "-" + name);
+}
+
+// disparity16.png keeps negative and sub-pixel disparities, invalid apart:
+// d16 + 32768, 0 = invalid.
+TEST(Frontend, Disparity16PngRoundTripsSignedSubpixel) {
+  const std::int16_t inv = -33 * 16;
+  const std::int16_t row[10] = {-40, inv, 0, 5, 300, 32767, -1, -32 * 16, -32767, -32768};
+  const auto path = tempFile("disparity16.png");
+  writeDisparity16Png(path.string(), {row, 10, 1, sizeof row, PixelType::S16C1}, inv);
+  const cv::Mat png = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(png.type(), CV_16UC1);
+  const int want[10] = {32728, 0, 32768, 32773, 33068, 65535, 32767, 32256, 1, 1};
+  for (int x = 0; x < 10; ++x)
+    EXPECT_EQ(png.at<std::uint16_t>(0, x), want[x]) << x;
+  const cv::Mat back = readDisparity16Png(path.string(), inv);
+  std::filesystem::remove(path);
+  ASSERT_EQ(back.type(), CV_16SC1);
+  for (int x = 0; x < 9; ++x)
+    EXPECT_EQ(back.at<std::int16_t>(0, x), row[x]) << x;
+  EXPECT_EQ(back.at<std::int16_t>(0, 9), -32767) << "-32768 is written as -32767";
+  // An 8-bit file is refused with its name.
+  const auto eight = tempFile("eight.png");
+  ASSERT_TRUE(cv::imwrite(eight.string(), cv::Mat::zeros(2, 2, CV_8U)));
+  try {
+    readDisparity16Png(eight.string(), inv);
+    ADD_FAILURE() << "an 8-bit image was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(eight.string()), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(eight);
+}
+
+// disparity.pfm: float px, inf = invalid, rows bottom to top, little-endian.
+TEST(Frontend, DisparityPfmRoundTripsWithInfAsInvalid) {
+  const std::int16_t inv = -17 * 16;
+  const std::int16_t map[2][3] = {{-40, inv, 0}, {5, 32767, -3}};
+  const auto path = tempFile("disparity.pfm");
+  writeDisparityPfm(path.string(), {map, 3, 2, sizeof map[0], PixelType::S16C1}, inv);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string header = "Pf\n3 2\n-1.0\n";
+  ASSERT_EQ(bytes.size(), header.size() + 6 * 4);
+  EXPECT_EQ(bytes.substr(0, header.size()), header);
+  float first = 0;  // the bottom row comes first: 5 / 16
+  std::memcpy(&first, bytes.data() + header.size(), 4);
+  EXPECT_EQ(first, 5 / 16.0f);
+  EXPECT_TRUE(isPfmFile(path.string()));
+  const cv::Mat px = readPfm(path.string());
+  // OpenCV reads the same file to the same pixels.
+  if (cv::haveImageReader(path.string())) {
+    const cv::Mat theirs = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(theirs.type(), CV_32FC1);
+    ASSERT_EQ(theirs.size(), px.size());
+    EXPECT_EQ(std::memcmp(theirs.data, px.data, 6 * sizeof(float)), 0);
+  }
+  std::filesystem::remove(path);
+  ASSERT_EQ(px.type(), CV_32FC1);
+  ASSERT_EQ(px.size(), cv::Size(3, 2));
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      if (map[y][x] == inv)
+        EXPECT_TRUE(std::isinf(px.at<float>(y, x)) && px.at<float>(y, x) > 0);
+      else
+        EXPECT_EQ(px.at<float>(y, x), map[y][x] / 16.0f) << x << "," << y;
+    }
+}
+
+// Big-endian and colour PFM files (other writers) are read too; malformed
+// ones are refused with the file's name.
+TEST(Frontend, PfmReaderTakesBothByteOrdersAndRefusesBadFiles) {
+  const auto path = tempFile("big.pfm");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "PF\n2 1\n1.0\n";
+    for (float v : {1.5f, 0.f, 0.f, -2.25f, 0.f, 0.f}) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &v, 4);
+      const unsigned char b[4] = {
+          static_cast<unsigned char>(bits >> 24), static_cast<unsigned char>(bits >> 16),
+          static_cast<unsigned char>(bits >> 8), static_cast<unsigned char>(bits)};
+      out.write(reinterpret_cast<const char*>(b), 4);
+    }
+  }
+  const cv::Mat px = readPfm(path.string());
+  ASSERT_EQ(px.size(), cv::Size(2, 1));
+  EXPECT_EQ(px.at<float>(0, 0), 1.5f);
+  EXPECT_EQ(px.at<float>(0, 1), -2.25f);
+  for (const std::string& bad : {std::string("P5\n2 1\n255\nab"), std::string("Pf\n2 1\n-1.0\nabc"),
+                                 std::string("Pf\n2 x\n-1.0\n12345678"), std::string("Pf\n2")}) {
+    std::ofstream(path, std::ios::binary) << bad;
+    try {
+      readPfm(path.string());
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+  }
+  std::filesystem::remove(path);
+  EXPECT_THROW(readPfm(path.string()), Error);
 }
 
 // Near is hot: the colour view puts more red on larger disparities.

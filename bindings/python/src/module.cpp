@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "horopter/core/error.hpp"
+#include "horopter/version.h"
 
 PYBIND11_MODULE(horopter, m) {
   namespace py = pybind11;
@@ -14,9 +15,7 @@ PYBIND11_MODULE(horopter, m) {
   // horopter::Error (bad input or a failed operation, with a message that
   // says what to fix) becomes horopter.Error, a ValueError.
   py::register_exception<horopter::Error>(m, "Error", PyExc_ValueError);
-#ifdef HOROPTER_VERSION_STRING
-  m.attr("__version__") = HOROPTER_VERSION_STRING;
-#endif
+  m.attr("__version__") = HOROPTER_VERSION_STRING;  // horopter/version.h
   horopter::python::bindStereo(m);
   horopter::python::bindKernels(m);
   horopter::python::bindSystem(m);

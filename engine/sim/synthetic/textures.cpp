@@ -12,6 +12,7 @@
 #include <cstring>
 #include <iostream>
 
+#include "io/quiet_png.hpp"
 #include "synthetic/rng.hpp"
 
 namespace horopter::synth {
@@ -186,7 +187,9 @@ Library load() {
       img = s.id == TextureId::Wood ? woodTexture(256)
                                     : tintedNoise(256, 20, 32, {128, 128, 128}, 0.25f);
     } else {
-      const cv::Mat raw = cv::imread(s.path, cv::IMREAD_COLOR);
+      // Not cv::imread: astronaut.png and chelsea.png carry a faulty sRGB
+      // profile, which libpng reports on every run.
+      const cv::Mat raw = imreadWithoutColourProfile(s.path, cv::IMREAD_COLOR);
       if (!raw.empty()) img = prepare(s.id, raw);
       lib.sources.push_back({s.name, s.path, !img.empty()});
       if (img.empty()) {

@@ -24,7 +24,10 @@ struct StereoScores {
 };
 
 // Reads an 8- or 16-bit single-channel ground-truth image (palette PNGs
-// included) and divides by `scale`: CV_32F pixels, 0 = unknown. Throws
+// included) and divides by `scale`: CV_32F pixels, 0 = unknown. A PFM file
+// (Middlebury's float disparities in px, recognised by its "Pf"/"PF"
+// signature) is read too: its values are divided by `scale` (1 for a PFM in
+// px) and inf or NaN become 0 = unknown. Throws
 // horopter::Error if the file is missing, unreadable or scale <= 0.
 cv::Mat loadGroundTruth(const std::string& path, double scale);
 

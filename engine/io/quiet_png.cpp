@@ -1,0 +1,56 @@
+#include "quiet_png.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <opencv2/imgcodecs.hpp>
+
+namespace horopter {
+
+namespace {
+
+bool isPng(const std::vector<std::uint8_t>& bytes) {
+  static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return bytes.size() >= 8 && std::memcmp(bytes.data(), kSignature, 8) == 0;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> withoutIccpChunks(std::vector<std::uint8_t> bytes) {
+  if (!isPng(bytes)) return bytes;
+  // Chunks: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
+  std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + 8);
+  out.reserve(bytes.size());
+  std::size_t pos = 8;
+  while (pos < bytes.size()) {
+    if (bytes.size() - pos < 12) return bytes;  // truncated: let the decoder say so
+    const std::size_t length = (std::size_t{bytes[pos]} << 24) |
+                               (std::size_t{bytes[pos + 1]} << 16) |
+                               (std::size_t{bytes[pos + 2]} << 8) | std::size_t{bytes[pos + 3]};
+    if (length > bytes.size() - pos - 12) return bytes;
+    const std::size_t end = pos + 12 + length;
+    if (std::memcmp(bytes.data() + pos + 4, "iCCP", 4) != 0)
+      out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(pos),
+                 bytes.begin() + static_cast<std::ptrdiff_t>(end));
+    pos = end;
+  }
+  return out;
+}
+
+cv::Mat imreadWithoutColourProfile(const std::string& path, int flags) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  // Anything but a PNG goes through cv::imread as before (a JPEG's EXIF
+  // orientation included).
+  if (!isPng(bytes)) return cv::imread(path, flags);
+  try {
+    return cv::imdecode(withoutIccpChunks(std::move(bytes)), flags);
+  } catch (const cv::Exception&) {
+    return {};
+  }
+}
+
+}  // namespace horopter
