@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     horopter::hw::CanFrame frame;
     frame.id = static_cast<std::uint32_t>(data[i] | (data[i + 1] << 8)) & 0x7FF;
     frame.length = data[i + 2];
-    for (std::size_t k = 0; k < 8; ++k) frame.data[k] = data[i + 3 + k];
+    for (std::size_t k = 0; k < 8; ++k)
+      frame.data[k] = data[i + 3 + k];
     decode(frame, status);
   }
   return 0;
