@@ -35,6 +35,10 @@ class Reader {
     }
     if (!fs_.isOpened())
       throw Error("cannot open calibration file '" + path + "' as OpenCV YAML/XML");
+    // A top level that is a list or a value: OpenCV asserts on fs_[name]
+    // (found by tests/fuzz/calibration_file_fuzz.cpp).
+    if (!fs_.root().isMap())
+      throw Error("calibration file '" + path + "' does not hold named fields at the top level");
   }
 
   cv::FileNode node(const char* name, const char* expected) {

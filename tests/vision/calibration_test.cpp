@@ -255,6 +255,8 @@ TEST_F(OpenCVViews, MalformedFilesNameTheField) {
   ASSERT_NE(d, std::string::npos);
   std::ofstream(huge) << text.substr(0, d) << ":a[tad " << text.substr(d + 7);
   expectError([&] { loadStereoCalibration(huge); }, {"horopter_calib_huge.yml"});
+  std::ofstream(huge) << "%YAML:1.0\n---\n- 1\n- 2\n";
+  expectError([&] { loadStereoCalibration(huge); }, {"named fields at the top level"});
   std::remove(huge.c_str());
 
   const std::string garbage = ::testing::TempDir() + "horopter_calib_garbage.yml";
