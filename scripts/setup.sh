@@ -11,6 +11,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo   # OpenCL, and PoCL on the CPU
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
+  clang-14 libclang-rt-14-dev             # scripts/fuzz.sh: libFuzzer is in clang-rt's archives
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module and its pytest suite
   python3-distributed                     # Dask: evaluation trials spread over a cluster
 )

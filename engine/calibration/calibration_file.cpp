@@ -28,9 +28,18 @@ class Reader {
       fs_.open(path, cv::FileStorage::READ);
     } catch (const cv::Exception& e) {
       throw Error("calibration file '" + path + "' is not valid OpenCV YAML/XML: " + e.msg);
+    } catch (const std::exception& e) {
+      // OpenCV's parsers let std::length_error out for some malformed text
+      // (found by tests/fuzz/calibration_file_fuzz.cpp).
+      throw Error("calibration file '" + path + "' is not valid OpenCV YAML/XML (" + e.what() +
+                  ")");
     }
     if (!fs_.isOpened())
       throw Error("cannot open calibration file '" + path + "' as OpenCV YAML/XML");
+    // A top level that is a list or a value: OpenCV asserts on fs_[name]
+    // (found by tests/fuzz/calibration_file_fuzz.cpp).
+    if (!fs_.root().isMap())
+      throw Error("calibration file '" + path + "' does not hold named fields at the top level");
   }
 
   cv::FileNode node(const char* name, const char* expected) {
@@ -61,10 +70,24 @@ class Reader {
     const std::string expected =
         std::to_string(rows) + "x" + (cols ? std::to_string(cols) : std::string("N")) + " matrix";
     const cv::FileNode n = node(name, expected.c_str());
+    // The header's size first: OpenCV allocates rows x cols before reading
+    // the data, so "rows: 2000000000" would allocate gigabytes, or fail
+    // inside OpenCV, before the size check below (found by the fuzz target
+    // tests/fuzz/calibration_file_fuzz.cpp). A row vector has at most 14
+    // entries, OpenCV's longest distortion model.
+    if (n.isMap()) {
+      const cv::FileNode r = n["rows"], c = n["cols"];
+      if (!r.isInt() || !c.isInt())
+        fail(name, "is not an OpenCV matrix (expected a " + expected + ")");
+      const int fileRows = static_cast<int>(r), fileCols = static_cast<int>(c);
+      if (fileRows != rows || (cols ? fileCols != cols : fileCols < 1 || fileCols > 14))
+        fail(name, "is " + std::to_string(fileRows) + "x" + std::to_string(fileCols) +
+                       ", expected a " + expected);
+    }
     cv::Mat m;
     try {
       n >> m;
-    } catch (const cv::Exception&) {
+    } catch (const std::exception&) {  // cv::Exception, or std:: from OpenCV's reader
       fail(name, "is not an OpenCV matrix (expected a " + expected + ")");
     }
     if (m.empty() || m.rows != rows || (cols && m.cols != cols) || m.channels() != 1)
@@ -171,15 +194,31 @@ StereoCalibration loadStereoCalibration(const std::string& path) {
   c.rmsRight = in.number("rms_right");
   c.epipolarError = in.number("epipolar_error");
   c.homographyError = in.number("homography_error");
-  for (const cv::FileNode& v : in.storage()["views"]) {
-    c.views.push_back({static_cast<std::string>(v["name"]), static_cast<double>(v["left_error"]),
-                       static_cast<double>(v["right_error"])});
-    cv::Mat h;
-    v["board_homography"] >> h;
-    if (!h.empty()) c.boardHomographies.push_back(h);
+  // OpenCV asserts on a malformed node (a matrix whose data does not fill it,
+  // found by tests/fuzz/calibration_file_fuzz.cpp): an error naming the field.
+  const char* field = "views";
+  try {
+    for (const cv::FileNode& v : in.storage()["views"]) {
+      c.views.push_back({static_cast<std::string>(v["name"]), static_cast<double>(v["left_error"]),
+                         static_cast<double>(v["right_error"])});
+      cv::Mat h;
+      const cv::FileNode hn = v["board_homography"];
+      if (hn.isMap() && !(hn["rows"].isInt() && static_cast<int>(hn["rows"]) == 3 &&
+                          hn["cols"].isInt() && static_cast<int>(hn["cols"]) == 3))
+        in.fail("views", "holds a board_homography that is not a 3x3 matrix");
+      hn >> h;
+      if (!h.empty()) c.boardHomographies.push_back(h);
+    }
+    field = "skipped";
+    for (const cv::FileNode& s : in.storage()["skipped"])
+      c.skipped.push_back(static_cast<std::string>(s));
+  } catch (const Error&) {
+    throw;  // already names the field
+  } catch (const cv::Exception& e) {
+    in.fail(field, "is malformed (" + e.err + ")");
+  } catch (const std::exception& e) {
+    in.fail(field, std::string("is malformed (") + e.what() + ")");
   }
-  for (const cv::FileNode& s : in.storage()["skipped"])
-    c.skipped.push_back(static_cast<std::string>(s));
   checkCalibration(c, path);  // the meanings, once the structure is read
   return c;
 }

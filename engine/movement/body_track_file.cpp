@@ -103,6 +103,11 @@ std::vector<BodySample> readBodyTrack(const std::string& path, std::vector<Movem
     }
     if (static_cast<int>(v.size()) != kColumns)
       fail(std::to_string(v.size()) + " columns, expected " + std::to_string(kColumns));
+    // A frame number is a whole number a double holds exactly; the cast of
+    // NaN or 1e300 to an integer is undefined (found by
+    // tests/fuzz/body_track_fuzz.cpp).
+    if (!(v[0] >= -9007199254740992.0 && v[0] <= 9007199254740992.0) || v[0] != std::floor(v[0]))
+      fail("frame must be a whole number, not '" + std::to_string(v[0]) + "'");
     BodySample s;
     s.frame = static_cast<std::int64_t>(v[0]);
     s.timeS = v[1];

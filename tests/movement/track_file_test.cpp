@@ -72,6 +72,10 @@ TEST(BodyTrackFile, MalformedFilesAreClearErrors) {
   std::string bad = row;
   bad[bad.find(',') + 1] = 'x';
   expectError(magic + "\n" + header + "\n" + bad + "\n", "is not a number");
+  // NaN or huge frame numbers (an undefined cast, found by the fuzz target).
+  for (const char* frame : {"nan", "1e300", "-inf", "2.5"})
+    expectError(magic + "\n" + header + "\n" + frame + row.substr(row.find(',')) + "\n",
+                "frame must be a whole number");
   std::filesystem::remove(path);
   EXPECT_THROW(readBodyTrack(tempPath("missing.csv")), Error);
 }

@@ -233,6 +233,32 @@ TEST_F(OpenCVViews, MalformedFilesNameTheField) {
   std::ofstream(broken) << text.substr(0, start) << text.substr(end + 1);
   expectError([&] { loadStereoCalibration(broken); }, {"'P2'", "missing", "3x4"});
 
+  // A matrix header with a huge or a non-integer size is an error before
+  // OpenCV allocates anything (the fuzz target found "rows: *" asking for
+  // gigabytes).
+  const std::size_t k1 = text.find("rows: 3", text.find("K1:"));
+  ASSERT_NE(k1, std::string::npos);
+  const std::string huge = ::testing::TempDir() + "horopter_calib_huge.yml";
+  std::ofstream(huge) << text.substr(0, k1) << "rows: 2000000000" << text.substr(k1 + 7);
+  expectError([&] { loadStereoCalibration(huge); }, {"'K1'", "2000000000x3", "3x3"});
+  std::ofstream(huge) << text.substr(0, k1) << "rows: *" << text.substr(k1 + 7);
+  expectError([&] { loadStereoCalibration(huge); }, {"'K1'", "not an OpenCV matrix"});
+  // A view's homography whose data does not fill it: OpenCV asserts inside
+  // the read; the error names the field (also found by the fuzz target).
+  const std::size_t h = text.find("rows: 3", text.find("board_homography"));
+  ASSERT_NE(h, std::string::npos);
+  std::ofstream(huge) << text.substr(0, h) << "rows: 4" << text.substr(h + 7);
+  expectError([&] { loadStereoCalibration(huge); }, {"'views'", "3x3"});
+  // Text on which OpenCV's YAML parser throws std::length_error, not
+  // cv::Exception (the fuzz target's mutation of K1's data line).
+  const std::size_t d = text.find("data: [", text.find("K1:"));
+  ASSERT_NE(d, std::string::npos);
+  std::ofstream(huge) << text.substr(0, d) << ":a[tad " << text.substr(d + 7);
+  expectError([&] { loadStereoCalibration(huge); }, {"horopter_calib_huge.yml"});
+  std::ofstream(huge) << "%YAML:1.0\n---\n- 1\n- 2\n";
+  expectError([&] { loadStereoCalibration(huge); }, {"named fields at the top level"});
+  std::remove(huge.c_str());
+
   const std::string garbage = ::testing::TempDir() + "horopter_calib_garbage.yml";
   std::ofstream(garbage) << "%YAML:1.0\n---\nimage_width: [1, 2\n";
   expectError([&] { loadStereoCalibration(garbage); }, {"horopter_calib_garbage.yml"});
