@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "eventually.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/serial_port.hpp"
@@ -16,14 +17,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-template <typename F>
-bool eventually(F condition) {
-  for (int i = 0; i < 500; ++i) {  // up to ~5 s on a loaded machine
-    if (condition()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return condition();
-}
+using horopter::test::eventually;
 
 std::unique_ptr<DynamixelHead> openHead(SimDynamixelBus& bus, DynamixelHeadOptions o = {}) {
   return std::make_unique<DynamixelHead>(std::make_unique<SerialPort>(bus.port()), o);

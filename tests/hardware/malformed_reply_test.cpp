@@ -8,6 +8,7 @@
 #include <cmath>
 #include <thread>
 
+#include "eventually.hpp"
 #include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
 #include "horopter/hardware/ptu_head.hpp"
@@ -21,14 +22,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-template <typename F>
-bool eventually(F condition) {
-  for (int i = 0; i < 500; ++i) {  // up to ~5 s on a loaded machine
-    if (condition()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return condition();
-}
+using horopter::test::eventually;
 
 // Every measurement within the head's limits while `condition` is awaited.
 template <typename H, typename F>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "eventually.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/ptu_head.hpp"
 #include "horopter/hardware/scripted_transport.hpp"
@@ -17,14 +18,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-template <typename F>
-bool eventually(F condition) {
-  for (int i = 0; i < 500; ++i) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return condition();
-}
+using horopter::test::eventually;
 
 std::unique_ptr<PtuHead> openHead(SimPtu& sim, PtuHeadOptions o = {}) {
   return std::make_unique<PtuHead>(std::make_unique<SerialPort>(sim.port(), SerialOptions{9600}),
