@@ -17,14 +17,6 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Rewrites every `from` in the rows of an S16C1 map as `to`.
-void replaceValue(const ImageView& map, std::int16_t from, std::int16_t to, RowRange rows) {
-  for (int y = rows.begin; y < rows.end; ++y) {
-    std::int16_t* row = map.row<std::int16_t>(y);
-    std::replace(row, row + map.width, from, to);
-  }
-}
-
 }  // namespace
 
 StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
@@ -111,9 +103,8 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   });
   filterSpeckles(clean_.view(), params, *backend_);
   if (range.minDisparity != stereo_.minDisparity)  // another invalid marker
-    forEachStripe(height, [&](RowRange rows) {
-      replaceValue(clean_.view(), invalidDisparity(params), invalidDisparity(stereo_), rows);
-    });
+    forEachStripe(
+        height, [&](RowRange rows) { restoreInvalidMarker(clean_.view(), stereo_, range, rows); });
   timings_.cleanup = msSince(start);
 
   if (median_.kernelSize > 0) {

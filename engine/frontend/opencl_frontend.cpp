@@ -162,13 +162,7 @@ const Image& OpenClFrontend::wait(Ticket ticket) {
 // path's front end does the same before its median).
 void OpenClFrontend::finish(Slot& slot) {
   slot.done = true;
-  if (slot.range.minDisparity == stereo_.minDisparity) return;
-  const std::int16_t from = invalidDisparity(withRange(stereo_, slot.range));
-  const std::int16_t to = invalidDisparity(stereo_);
-  for (int y = 0; y < slot.out.height(); ++y) {
-    std::int16_t* row = slot.out.row<std::int16_t>(y);
-    std::replace(row, row + slot.out.width(), from, to);
-  }
+  restoreInvalidMarker(slot.out.view(), stereo_, slot.range);
 }
 
 const Image& OpenClFrontend::computeDisparity(const ConstImageView& left,

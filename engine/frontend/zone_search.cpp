@@ -40,6 +40,18 @@ StereoParams withRange(StereoParams p, SearchRange range) {
   return p;
 }
 
+void restoreInvalidMarker(const ImageView& map, const StereoParams& full, SearchRange range,
+                          RowRange rows) {
+  if (range.minDisparity == full.minDisparity) return;  // the same marker
+  const std::int16_t from = invalidDisparity(withRange(full, range));
+  const std::int16_t to = invalidDisparity(full);
+  const int end = rows.end < 0 ? map.height : rows.end;
+  for (int y = rows.begin; y < end; ++y) {
+    std::int16_t* row = map.row<std::int16_t>(y);
+    std::replace(row, row + map.width, from, to);
+  }
+}
+
 void checkSearchRange(const StereoParams& full, SearchRange range) {
   if (range.minDisparity < full.minDisparity)
     throw Error("the search range starts at " + std::to_string(range.minDisparity) +

@@ -18,7 +18,9 @@
 #include <cstdint>
 #include <span>
 
+#include "horopter/core/image.hpp"
 #include "horopter/core/option_table.hpp"
+#include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
@@ -39,6 +41,12 @@ HOROPTER_API StereoParams withRange(StereoParams p, SearchRange range);
 // parameters that starts at or above full.minDisparity (so that its values
 // stay above full's invalid marker).
 HOROPTER_API void checkSearchRange(const StereoParams& full, SearchRange range);
+
+// What a front end does to a map it computed over `range`: the pixels that
+// hold that range's invalid marker get `full`'s (nothing to do when the
+// two ranges start at the same disparity). S16C1 map; `rows` as the kernels'.
+HOROPTER_API void restoreInvalidMarker(const ImageView& map, const StereoParams& full,
+                                       SearchRange range, RowRange rows = RowRange::all());
 
 struct HOROPTER_API ZoneSearch {
   int enabled = 0;  // 1: each frame's range follows the zone; 0: the full range
