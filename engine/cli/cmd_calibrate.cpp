@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
+#include "io/image_files.hpp"
 
 namespace horopter::cli {
 
@@ -37,7 +38,7 @@ const char* kHelp =
     "Views where either image misses the board are named and left out; too few left -> error.\n";
 
 cv::Mat readGrey(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  cv::Mat image = readImage(path, cv::IMREAD_GRAYSCALE);
   if (image.empty()) throw Error("cannot read image '" + path + "'");
   return image;
 }

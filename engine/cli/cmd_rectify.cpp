@@ -10,6 +10,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 #include "io/disparity_images.hpp"
+#include "io/image_files.hpp"
 
 namespace horopter::cli {
 
@@ -28,7 +29,7 @@ const char* kHelp =
     "name>_rectified.png\n";
 
 cv::Mat readColour(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  cv::Mat image = readImage(path, cv::IMREAD_COLOR);
   if (image.empty()) throw Error("cannot read image '" + path + "'");
   return image;
 }

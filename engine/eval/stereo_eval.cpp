@@ -11,6 +11,7 @@
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
+#include "io/image_files.hpp"
 
 namespace horopter {
 
@@ -48,7 +49,7 @@ void checkPair(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx) {
 
 cv::Mat loadColour(const std::string& path, const char* what) {
   requireFile(path, what);
-  cv::Mat colour = cv::imread(path, cv::IMREAD_COLOR);
+  cv::Mat colour = readImage(path, cv::IMREAD_COLOR);
   if (colour.empty()) throw Error(std::string(what) + " '" + path + "' could not be decoded");
   return colour;
 }
@@ -80,7 +81,7 @@ cv::Mat loadGroundTruth(const std::string& path, double scale) {
     }
     return px;
   }
-  const cv::Mat raw = cv::imread(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  const cv::Mat raw = readImage(path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
   if (raw.empty()) throw Error("ground truth '" + path + "' could not be decoded");
   if (raw.depth() != CV_8U && raw.depth() != CV_16U)
     throw Error("ground truth '" + path + "' must be 8- or 16-bit");

@@ -15,6 +15,7 @@
 #include "file_output.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/opencv.hpp"
+#include "io/image_files.hpp"
 
 namespace horopter {
 
@@ -92,7 +93,7 @@ cv::Mat readDisparity16Png(const std::string& path, std::int16_t invalid) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error("cannot read the disparity image '" + path + "': no such file");
-  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat raw = readImage(path, cv::IMREAD_UNCHANGED);
   if (raw.empty())
     throw Error("cannot read the disparity image '" + path + "': it could not be decoded");
   if (raw.type() != CV_16UC1)

@@ -1,10 +1,6 @@
 #include "quiet_png.hpp"
 
 #include <cstring>
-#include <fstream>
-#include <iterator>
-
-#include <opencv2/imgcodecs.hpp>
 
 namespace horopter {
 
@@ -36,21 +32,6 @@ std::vector<std::uint8_t> withoutIccpChunks(std::vector<std::uint8_t> bytes) {
     pos = end;
   }
   return out;
-}
-
-cv::Mat imreadWithoutColourProfile(const std::string& path, int flags) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-  // Anything but a PNG goes through cv::imread as before (a JPEG's EXIF
-  // orientation included).
-  if (!isPng(bytes)) return cv::imread(path, flags);
-  try {
-    return cv::imdecode(withoutIccpChunks(std::move(bytes)), flags);
-  } catch (const cv::Exception&) {
-    return {};
-  }
 }
 
 }  // namespace horopter

@@ -1,11 +1,10 @@
-// Reading image files without libpng's colour-profile warning.
+// Dropping a PNG's colour profile, which libpng warns about (readImage in
+// image_files.hpp uses it).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 namespace horopter {
 
@@ -14,13 +13,5 @@ namespace horopter {
 // an embedded ICC colour profile, which OpenCV does not apply: dropping it
 // leaves every decoded pixel the same.
 std::vector<std::uint8_t> withoutIccpChunks(std::vector<std::uint8_t> bytes);
-
-// cv::imread(path, flags), but a PNG's iCCP chunk is dropped before decoding,
-// so that libpng does not print "libpng warning: iCCP: known incorrect sRGB
-// profile" for files that carry a faulty profile (scikit-image's astronaut
-// and chelsea). Every other warning and error of the decoder still shows.
-// Returns an empty Mat where cv::imread would (missing, unreadable or
-// undecodable file).
-cv::Mat imreadWithoutColourProfile(const std::string& path, int flags);
 
 }  // namespace horopter

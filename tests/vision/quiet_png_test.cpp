@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/image_files.hpp"
 #include "io/quiet_png.hpp"
 
 namespace horopter::test {
@@ -58,14 +59,14 @@ TEST(QuietPng, SamePixelsAsImread) {
     if (!std::filesystem::exists(f)) continue;
     ++seen;
     const cv::Mat theirs = cv::imread(f, cv::IMREAD_COLOR);
-    const cv::Mat ours = imreadWithoutColourProfile(f, cv::IMREAD_COLOR);
+    const cv::Mat ours = readImage(f, cv::IMREAD_COLOR);
     ASSERT_FALSE(ours.empty()) << f;
     ASSERT_EQ(ours.size(), theirs.size()) << f;
     ASSERT_EQ(ours.type(), theirs.type()) << f;
     EXPECT_EQ(cv::norm(ours, theirs, cv::NORM_INF), 0) << f;
   }
   if (seen == 0) GTEST_SKIP() << "no texture files here (python3-skimage, opencv-doc)";
-  EXPECT_TRUE(imreadWithoutColourProfile("/no/such/file.png", cv::IMREAD_COLOR).empty());
+  EXPECT_TRUE(readImage("/no/such/file.png", cv::IMREAD_COLOR).empty());
 }
 
 }  // namespace

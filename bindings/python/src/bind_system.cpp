@@ -10,6 +10,7 @@
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/devices.hpp"
 #include "io/disparity_images.hpp"
+#include "io/image_files.hpp"
 
 namespace horopter::python {
 
@@ -62,7 +63,7 @@ py::array imread(const std::string& path, bool grey) {
   cv::Mat image;
   {
     py::gil_scoped_release release;
-    image = cv::imread(path, grey ? cv::IMREAD_GRAYSCALE : cv::IMREAD_UNCHANGED);
+    image = readImage(path, grey ? cv::IMREAD_GRAYSCALE : cv::IMREAD_UNCHANGED);
   }
   if (image.empty())
     throw Error("could not read the image '" + path + "': check the path and the format");

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <iostream>
 
-#include "io/quiet_png.hpp"
+#include "io/image_files.hpp"
 #include "synthetic/rng.hpp"
 
 namespace horopter::synth {
@@ -189,7 +189,7 @@ Library load() {
     } else {
       // Not cv::imread: astronaut.png and chelsea.png carry a faulty sRGB
       // profile, which libpng reports on every run.
-      const cv::Mat raw = imreadWithoutColourProfile(s.path, cv::IMREAD_COLOR);
+      const cv::Mat raw = readImage(s.path, cv::IMREAD_COLOR);
       if (!raw.empty()) img = prepare(s.id, raw);
       lib.sources.push_back({s.name, s.path, !img.empty()});
       if (img.empty()) {
