@@ -10,7 +10,9 @@
 
 namespace horopter::capture {
 
-// A folder of left/right images, paired in sorted order.
+// A folder of left/right images, paired by name (left0007.png with
+// right0007.png, or left/0007.png with right/0007.png), in natural order
+// of the names (frame2 before frame10).
 class DirectorySource : public StereoSource {
  public:
   explicit DirectorySource(const std::string& dir);

@@ -96,6 +96,42 @@ TEST(Capture, DirectorySourceErrorsSayWhatIsWrong) {
   EXPECT_NE(errorOf([&] { bad->next(f); }).find("cannot read image"), std::string::npos);
 }
 
+TEST(Capture, DirectorySourcePairsImagesByNameInNaturalOrder) {
+  const fs::path dir = freshDir("horopter_dir_names");
+  // Written out of order, with names whose sorted text order differs.
+  for (int i : {10, 2, 1}) {
+    const auto [l, r] = dotPair(i, 4);
+    cv::imwrite((dir / ("left_" + std::to_string(i) + ".png")).string(), l);
+    cv::imwrite((dir / ("right_" + std::to_string(i) + ".png")).string(), r);
+  }
+  auto source = openSource("dir:" + dir.string(), {});
+  Frame f;
+  for (int i : {1, 2, 10}) {
+    ASSERT_TRUE(source->next(f));
+    EXPECT_EQ(cv::norm(f.left, dotPair(i, 4).first, cv::NORM_INF), 0) << i;
+    EXPECT_EQ(cv::norm(f.right, dotPair(i, 4).second, cv::NORM_INF), 0) << i;
+  }
+  EXPECT_FALSE(source->next(f));
+}
+
+TEST(Capture, DirectorySourceNamesAnImageWithoutItsPartner) {
+  const fs::path dir = freshDir("horopter_dir_unpaired");
+  const auto [l, r] = dotPair(3, 2);
+  cv::imwrite((dir / "left1.png").string(), l);
+  cv::imwrite((dir / "left2.png").string(), l);
+  cv::imwrite((dir / "right1.png").string(), r);
+  cv::imwrite((dir / "right3.png").string(), r);
+  const std::string message = errorOf([&] { openSource("dir:" + dir.string(), {}); });
+  EXPECT_NE(message.find("left image 'left2.png' has no right image"), std::string::npos)
+      << message;
+  const fs::path twice = freshDir("horopter_dir_twice");
+  cv::imwrite((twice / "left1.png").string(), l);
+  cv::imwrite((twice / "left1.jpg").string(), l);
+  cv::imwrite((twice / "right1.png").string(), r);
+  EXPECT_NE(errorOf([&] { openSource("dir:" + twice.string(), {}); }).find("have one name"),
+            std::string::npos);
+}
+
 TEST(Capture, VideoPairSourceReadsBothVideosFrameByFrame) {
   const fs::path dir = freshDir("horopter_video");
   const std::string lp = (dir / "l.avi").string(), rp = (dir / "r.avi").string();
