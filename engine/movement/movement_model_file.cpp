@@ -75,6 +75,16 @@ class Reader {
            std::to_string(n - 1));
   }
   int lineNo() const { return lineNo_; }
+  // Only blank and comment lines may follow the last record.
+  void expectEnd() {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++lineNo_;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+      fail("text after 'end': '" + line.substr(0, 40) + "'");
+    }
+  }
 
  private:
   std::istringstream in_;
@@ -169,7 +179,21 @@ MovementModel MovementModel::parse(const std::string& text, const std::string& s
         counts.table[s][v][m] = r.count(c[2 + m]);
     }
   }
-  r.next("end");
+  r.expectSize(r.next("end"), 1);
+  r.expectEnd();
+  // Every training frame counts one value of every symbol, so each symbol's
+  // counts of a class add up to that class's frames.
+  for (int s = 0; s < kLmaSymbolCount; ++s)
+    for (int m = 0; m < kMovementClassCount; ++m) {
+      std::int64_t sum = 0;
+      for (const auto& row : counts.table[s])
+        sum += row[m];
+      if (sum != counts.frames[m])
+        r.fail("symbol '" + std::string(lmaSymbolName(static_cast<LmaSymbol>(s))) + "' counts " +
+               std::to_string(sum) + " frames of '" +
+               movementClassName(static_cast<MovementClass>(m)) + "', the 'frames' record " +
+               std::to_string(counts.frames[m]) + ": the counts are inconsistent");
+    }
   try {
     return MovementModel(std::move(counts), params);
   } catch (const Error& e) {

@@ -11,6 +11,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/eval/movement_training.hpp"
 #include "horopter/movement/movement_classifier.hpp"
+#include "test_support.hpp"
 
 namespace horopter {
 namespace {
@@ -157,6 +158,26 @@ TEST(MovementModelFile, CorruptAndTruncatedFilesAreClearErrors) {
   EXPECT_THROW(MovementModel::parse(badParams, "params.hmm"), Error);
   // A missing file.
   EXPECT_THROW(MovementModel::load(tempPath("no-such-model.hmm")), Error);
+}
+
+TEST(MovementModelFile, TextAfterEndIsAnError) {
+  const std::string good = MovementModel(separableCounts(), {}).serialize();
+  EXPECT_NO_THROW(MovementModel::parse(good + "\n# a comment\n\n", "comment.hmm"));
+  const std::string message =
+      test::errorOf([&] { MovementModel::parse(good + "counts 0 1 2 3 4 5 6 7\n", "tail.hmm"); });
+  EXPECT_NE(message.find("text after 'end'"), std::string::npos) << message;
+  EXPECT_THROW(MovementModel::parse(good.substr(0, good.size() - 1) + " extra\n", "end.hmm"),
+               Error);
+}
+
+TEST(MovementModelFile, CountsThatDisagreeWithTheFramesAreAnError) {
+  std::string text = MovementModel(separableCounts(), {}).serialize();
+  // One more frame of class 0 in the frames record than any symbol counted.
+  const auto at = text.find("frames ") + 7;
+  const auto end = text.find(' ', at);
+  text.replace(at, end - at, std::to_string(std::stoll(text.substr(at, end - at)) + 1));
+  const std::string message = test::errorOf([&] { MovementModel::parse(text, "sums.hmm"); });
+  EXPECT_NE(message.find("inconsistent"), std::string::npos) << message;
 }
 
 TEST(MovementModel, ParametersOutOfRangeAreRefused) {
