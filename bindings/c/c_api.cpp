@@ -203,8 +203,9 @@ horopter_status horopter_matcher_disparity(const horopter_matcher* matcher, horo
   return guarded([&] {
     requireNonNull(matcher, "matcher");
     requireNonNull(out, "out");
-    if (matcher->frontend.disparity().empty())
-      throw InvalidArgument("no disparity yet: call horopter_matcher_compute first");
+    if (!matcher->frontend.hasDisparity())
+      throw InvalidArgument(
+          "no disparity: horopter_matcher_compute was not called, or its last call failed");
     *out = imageOf(matcher->frontend.disparity());
   });
 }
@@ -224,8 +225,9 @@ horopter_status horopter_matcher_mask_result(const horopter_matcher* matcher, ho
                                              horopter_image* segmented) {
   return guarded([&] {
     requireNonNull(matcher, "matcher");
-    if (matcher->frontend.mask().empty())
-      throw InvalidArgument("no mask yet: call horopter_matcher_mask first");
+    if (!matcher->frontend.hasMask())
+      throw InvalidArgument(
+          "no mask: horopter_matcher_mask was not called, or its last call failed");
     if (mask) *mask = imageOf(matcher->frontend.mask());
     if (segmented) *segmented = imageOf(matcher->frontend.segmented());
   });

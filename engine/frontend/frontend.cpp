@@ -61,6 +61,7 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
 
 const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
                                               const ConstImageView& right, SearchRange range) {
+  hasDisparity_ = hasMask_ = false;  // until this frame is through
   checkSearchRange(stereo_, range);
   const StereoParams params = withRange(stereo_, range);
   checkView(left, PixelType::U8C1, "left image");
@@ -116,6 +117,7 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
     timings_.median = msSince(start);
   }
   lastRange_ = range;
+  hasDisparity_ = true;
   return disparity();
 }
 
@@ -125,7 +127,11 @@ const Image& StereoFrontend::disparity() const {
 
 void StereoFrontend::computeMask(std::span<const std::int16_t> thresholds,
                                  const ConstImageView& image) {
-  if (clean_.empty()) throw Error("StereoFrontend::computeMask: call computeDisparity first");
+  if (!hasDisparity_)
+    throw Error(
+        "StereoFrontend::computeMask: no disparity: computeDisparity was not called, or its last "
+        "call failed");
+  hasMask_ = false;
   const auto start = Clock::now();
   const bool segment = !image.empty();
   if (mask_.width() != clean_.width() || mask_.height() != clean_.height())
@@ -141,6 +147,7 @@ void StereoFrontend::computeMask(std::span<const std::int16_t> thresholds,
                  segment ? segmented_.view() : ImageView{}, *backend_, rows);
   });
   timings_.mask = msSince(start);
+  hasMask_ = true;
 }
 
 }  // namespace horopter

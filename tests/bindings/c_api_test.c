@@ -136,7 +136,7 @@ static void test_bad_input(void) {
   CHECK(horopter_matcher_create(&params, NULL, 1, &matcher) == HOROPTER_OK);
   horopter_image out;
   CHECK(horopter_matcher_disparity(matcher, &out) == HOROPTER_ERROR_INVALID_ARGUMENT);
-  CHECK(strstr(horopter_last_error(), "compute first") != NULL);
+  CHECK(strstr(horopter_last_error(), "was not called") != NULL);
 
   unsigned char pixels[96 * 32] = {0};
   horopter_image a = {pixels, 96, 32, 96, HOROPTER_U8C1};
@@ -166,6 +166,16 @@ static void test_bad_input(void) {
   horopter_image mask, segmented;
   CHECK(horopter_matcher_mask_result(matcher, &mask, &segmented) == HOROPTER_OK);
   CHECK(segmented.data == NULL);
+  /* A failed call leaves no result behind that could pass for its own. */
+  CHECK(horopter_matcher_mask(matcher, table, 10, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_mask_result(matcher, &mask, &segmented) ==
+        HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "last call failed") != NULL);
+  CHECK(horopter_matcher_compute(matcher, &a, &narrow) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_disparity(matcher, &out) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_mask(matcher, table, 96, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_compute(matcher, &a, &a) == HOROPTER_OK);
+  CHECK(horopter_matcher_disparity(matcher, &out) == HOROPTER_OK);
   horopter_matcher_destroy(matcher);
   horopter_matcher_destroy(NULL);
 

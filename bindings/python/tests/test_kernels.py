@@ -59,6 +59,22 @@ def test_mask_kernel_equals_the_rule(grey_pair, scene_frame):
     assert none is None
 
 
+def test_a_failed_compute_leaves_no_result_behind(grey_pair):
+    left, right = grey_pair
+    matcher = horopter.StereoMatcher(horopter.StereoParams(numDisparities=64), backend="scalar")
+    matcher.compute(left, right)
+    thresholds = np.full(left.shape[1], 20 * 16, np.int16)
+    matcher.compute_mask(thresholds)
+    with pytest.raises(horopter.Error):
+        matcher.compute(left, right[:, :-8])
+    # The mask of the frame before must not pass for this frame's.
+    with pytest.raises(horopter.Error, match="last call failed"):
+        matcher.compute_mask(thresholds)
+    matcher.compute(left, right)
+    mask, _ = matcher.compute_mask(thresholds)
+    assert mask.shape == left.shape
+
+
 def test_backends_and_devices():
     names = [b["name"] for b in horopter.backends()]
     assert "scalar" in names and "scalar" in AVAILABLE

@@ -53,6 +53,10 @@ class HOROPTER_API StereoFrontend {
   // receives it with the outside of the zone zeroed.
   void computeMask(std::span<const std::int16_t> thresholds, const ConstImageView& image = {});
 
+  // False before the first computeDisparity (computeMask) and after one that
+  // threw: the images below then hold no fresh result, whatever they contain.
+  bool hasDisparity() const { return hasDisparity_; }
+  bool hasMask() const { return hasMask_; }
   const Image& disparity() const;                           // final (after median)
   const Image& cleanedDisparity() const { return clean_; }  // before the median
   const Image& mask() const { return mask_; }
@@ -78,6 +82,7 @@ class HOROPTER_API StereoFrontend {
   Image mask_, segmented_;
   FrontendTimings timings_;
   SearchRange lastRange_;
+  bool hasDisparity_ = false, hasMask_ = false;
 };
 
 }  // namespace horopter
