@@ -38,7 +38,7 @@ const char* kBaseHelp =
     "  --can IF            SocketCAN interface, e.g. can0\n"
     "  --usb DEV           the RMP's USB interface as a serial device, e.g. /dev/ttyUSB1\n"
     "  --baud N            --usb baud rate (default 460800, as libsegwayrmp)\n"
-    "  --sim               a simulated RMP on an in-process CAN bus\n"
+    "  --sim               a simulated RMP on a pseudo-terminal (through --usb's serial path)\n"
     "  --model M           rmp200 (default), rmp400, rmp100 or rmp50 (the counts scaling)\n"
     "  --linear V          m/s forward (default 0)\n"
     "  --angular W         rad/s, positive turns left (default 0)\n"
@@ -114,15 +114,16 @@ int runBase(Args& args) {
     std::cerr << "base: the command exceeds the safety limits and will be clamped to "
               << options.limits.maxLinear << " m/s, " << options.limits.maxAngular << " rad/s\n";
 
-  std::unique_ptr<hw::InProcessCanBus> bus;
-  std::unique_ptr<hw::SimRmp> simRmp;
+  // --sim: the simulated RMP on a pseudo-terminal, driven through the same
+  // serial port and USB framing as --usb.
+  std::unique_ptr<hw::SimRmpOnPty> simRmp;
   std::unique_ptr<hw::CanTransport> transport;
   if (sim) {
-    bus = std::make_unique<hw::InProcessCanBus>();
     hw::SimRmpOptions so;
     so.scaling = options.scaling;
-    simRmp = std::make_unique<hw::SimRmp>(bus->deviceSide(), so);
-    transport = bus->takeHostSide();
+    simRmp = std::make_unique<hw::SimRmpOnPty>(so);
+    transport = std::make_unique<hw::RmpUsbCan>(
+        std::make_unique<hw::SerialPort>(simRmp->port(), hw::SerialOptions{baud}));
   } else if (can) {
     transport = std::make_unique<hw::SocketCan>(*can);
   } else {

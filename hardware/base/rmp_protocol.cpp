@@ -258,7 +258,13 @@ std::array<std::uint8_t, kUsbFrameSize> encodeUsbFromRmp(const CanFrame& frame,
   return p;
 }
 
-UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer) {
+namespace {
+
+// The first frame in `buffer` whose header is F0 55 and a channel byte that
+// `channelOk` accepts; `decodeId` reads the identifier from the packet (the
+// two directions place it differently).
+template <class ChannelOk, class DecodeId>
+UsbParse parseUsb(std::span<const std::uint8_t> buffer, ChannelOk channelOk, DecodeId decodeId) {
   UsbParse r;
   std::size_t start = 0;
   while (start < buffer.size()) {
@@ -270,7 +276,7 @@ UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer) {
       ++start;
       continue;
     }
-    if (start + 2 < buffer.size() && buffer[start + 2] != 0xAA && buffer[start + 2] != 0xBB) {
+    if (start + 2 < buffer.size() && !channelOk(buffer[start + 2])) {
       ++start;
       continue;
     }
@@ -291,11 +297,29 @@ UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer) {
   r.outcome = UsbOutcome::kFrame;
   r.consumed = start + kUsbFrameSize;
   r.channel = p[2];
-  r.frame.id = ((static_cast<std::uint32_t>(p[4]) << 3) | ((p[5] >> 5) & 7)) & 0x7FF;
+  r.frame.id = decodeId(p) & 0x7FF;
   r.frame.length = 8;
   for (int i = 0; i < 8; ++i)
     r.frame.data[i] = p[9 + i];
   return r;
+}
+
+}  // namespace
+
+UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer) {
+  return parseUsb(
+      buffer, [](std::uint8_t c) { return c == 0xAA || c == 0xBB; },
+      [](std::span<const std::uint8_t> p) {
+        return (static_cast<std::uint32_t>(p[4]) << 3) | ((p[5] >> 5) & 7);
+      });
+}
+
+UsbParse parseUsbToRmp(std::span<const std::uint8_t> buffer) {
+  return parseUsb(
+      buffer, [](std::uint8_t c) { return c == 0x00 || c == 0x01; },
+      [](std::span<const std::uint8_t> p) {
+        return (static_cast<std::uint32_t>(p[6]) << 8) | p[7];
+      });
 }
 
 }  // namespace horopter::hw::rmp

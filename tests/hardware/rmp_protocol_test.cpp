@@ -204,6 +204,28 @@ TEST(RmpProtocol, UsbResyncAfterGarbageAndCorruptChecksum) {
   EXPECT_EQ(rmp::parseUsbFromRmp(std::span(good).first(10)).outcome, rmp::UsbOutcome::kNeedMore);
 }
 
+// The simulator's side of the framing reads what the driver writes, and
+// only that: an RMP -> host packet is not a command.
+TEST(RmpProtocol, UsbPacketToRmpParsesBack) {
+  CanFrame f;
+  f.id = 0x413;
+  f.data = {0, 0xA6, 0, 0, 0xFF, 0x10, 0, 0};
+  std::vector<std::uint8_t> stream = {0x55, 0xF0};  // garbage before the packet
+  const auto p = rmp::encodeUsbToRmp(f);
+  stream.insert(stream.end(), p.begin(), p.end());
+  std::span<const std::uint8_t> rest(stream);
+  const auto r = rmp::parseUsbToRmp(rest);
+  ASSERT_EQ(r.outcome, rmp::UsbOutcome::kFrame);
+  EXPECT_EQ(r.frame, f);
+  EXPECT_EQ(r.consumed, stream.size());
+  auto bad = p;
+  bad[12] ^= 1;
+  EXPECT_EQ(rmp::parseUsbToRmp(bad).outcome, rmp::UsbOutcome::kCorrupt);
+  EXPECT_EQ(rmp::parseUsbToRmp(std::span(p).first(17)).outcome, rmp::UsbOutcome::kNeedMore);
+  const auto fromRmp = rmp::encodeUsbFromRmp(f);
+  EXPECT_NE(rmp::parseUsbToRmp(fromRmp).outcome, rmp::UsbOutcome::kFrame);
+}
+
 TEST(RmpProtocol, UnknownModelNamesAreErrors) {
   EXPECT_THROW(rmp::scalingByName("rmp999"), horopter::Error);
   EXPECT_EQ(rmp::scalingByName("rmp400").countsPerMps, 332.0);

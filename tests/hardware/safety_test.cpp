@@ -2,7 +2,8 @@
 // sleeps, nothing reads the wall clock): watchdog, velocity and acceleration
 // limits, latching e-stop; then the same rules through the RMP driver on the
 // in-process CAN bus with the simulated RMP, stepped by hand; last the
-// watchdog in real time, both threads running.
+// watchdog in real time, both threads running, on the in-process bus and
+// over the simulated RMP's pseudo-terminal.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
 #include "horopter/hardware/rmp_base.hpp"
+#include "horopter/hardware/serial_port.hpp"
 #include "horopter/hardware/sim_rmp.hpp"
 #include "horopter/hardware/velocity_governor.hpp"
 
@@ -290,12 +292,9 @@ TEST(RmpDriverSafety, AZeroCommandRampsDownAtTheAccelerationLimit) {
 // Real time, both threads running (driver at 50 Hz, RMP at 100 Hz): the base
 // stands still 200 ms after the last command, plus at most one driver period,
 // one RMP cycle and some scheduling slack for a loaded machine.
-TEST(RmpDriverSafetyRealTime, WatchdogStopsTheBaseAbout200msAfterTheLastCommand) {
-  InProcessCanBus bus;
-  SimRmp sim(bus.deviceSide());
-  RmpBaseOptions o;
-  o.limits = fastLimits();
-  RmpBase base(bus.takeHostSide(), o);
+namespace {
+
+void expectWatchdogStopsInRealTime(RmpBase& base, SimRmp& sim) {
   const auto until = Clock::now() + 600ms;
   while (Clock::now() < until) {
     base.command({0.3, 0.0});
@@ -310,8 +309,30 @@ TEST(RmpDriverSafetyRealTime, WatchdogStopsTheBaseAbout200msAfterTheLastCommand)
     stopped = Clock::now();
   }
   const auto ms = std::chrono::duration<double, std::milli>(stopped - last).count();
-  std::printf("base stood still %.1f ms after the last command\n", ms);
+  std::printf("base stood still %.1f ms after the last command (%s)\n", ms, base.name().c_str());
   EXPECT_GE(ms, 200.0 - 1.0);  // never earlier than the watchdog allows
   EXPECT_LE(ms, 200.0 + 20 + 10 + 40);
   EXPECT_EQ(base.health().watchdogTrips, 1);
+}
+
+}  // namespace
+
+TEST(RmpDriverSafetyRealTime, WatchdogStopsTheBaseAbout200msAfterTheLastCommand) {
+  InProcessCanBus bus;
+  SimRmp sim(bus.deviceSide());
+  RmpBaseOptions o;
+  o.limits = fastLimits();
+  RmpBase base(bus.takeHostSide(), o);
+  expectWatchdogStopsInRealTime(base, sim);
+}
+
+// The same through a real tty: the driver opens the simulated RMP's
+// pseudo-terminal as it opens /dev/ttyUSB1 (SerialPort, the USB framing).
+TEST(RmpDriverSafetyRealTime, WatchdogStopsTheBaseOverItsPseudoTerminal) {
+  SimRmpOnPty sim;
+  RmpBaseOptions o;
+  o.limits = fastLimits();
+  RmpBase base(std::make_unique<RmpUsbCan>(std::make_unique<SerialPort>(sim.port())), o);
+  expectWatchdogStopsInRealTime(base, sim.rmp());
+  EXPECT_GT(sim.rmp().truth().motionFrames, 30);
 }

@@ -161,5 +161,8 @@ struct HOROPTER_API UsbParse {
 };
 // The first RMP -> host frame in `buffer` (resynchronises on F0 55 AA|BB).
 HOROPTER_API UsbParse parseUsbFromRmp(std::span<const std::uint8_t> buffer);
+// The first host -> RMP frame in `buffer` (resynchronises on F0 55 00|01):
+// what the RMP's USB interface reads, for the simulator behind a pty.
+HOROPTER_API UsbParse parseUsbToRmp(std::span<const std::uint8_t> buffer);
 
 }  // namespace horopter::hw::rmp

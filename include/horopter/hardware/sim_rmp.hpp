@@ -12,6 +12,10 @@
 #include <mutex>
 #include <thread>
 
+#include <memory>
+#include <string>
+
+#include "horopter/hardware/pty.hpp"
 #include "horopter/hardware/rmp_protocol.hpp"
 #include "horopter/hardware/transport.hpp"
 
@@ -69,6 +73,26 @@ class SimRmp {
   int faultSeries_ = 0;
   std::atomic<bool> stop_{false};
   std::thread thread_;
+};
+
+// A simulated RMP behind its USB interface on a pseudo-terminal: the real
+// driver opens port() with SerialPort and RmpUsbCan, exactly as it opens
+// /dev/ttyUSB1, so every command crosses a real tty and the 18-byte USB
+// framing in both directions.
+class SimRmpOnPty {
+ public:
+  explicit SimRmpOnPty(SimRmpOptions options = {});
+  ~SimRmpOnPty();
+  SimRmpOnPty(const SimRmpOnPty&) = delete;
+  SimRmpOnPty& operator=(const SimRmpOnPty&) = delete;
+
+  const std::string& port() const { return pty_.slavePath(); }
+  SimRmp& rmp() { return *rmp_; }
+
+ private:
+  PseudoTerminal pty_;
+  std::unique_ptr<CanTransport> usb_;  // the device side of the USB framing
+  std::unique_ptr<SimRmp> rmp_;
 };
 
 }  // namespace horopter::hw
