@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "display_probe.hpp"
 
 #include "file_output.hpp"
 #include "horopter/app/pipeline_builder.hpp"
@@ -376,8 +377,11 @@ int runPipeline(Args& args) {
   const StopSignals signals;
   RunJob job = parseRun(args);
   PipelineConfig& c = job.config;
-  if (job.display && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-    throw Error("--display needs a display (DISPLAY is not set): drop --display, or run under X");
+  if (job.display) checkDisplayOpens();
+  if (!c.zone.calib.empty() && c.source == "synthetic")
+    throw Error(
+        "--calib rectifies a raw camera pair, but the synthetic scene is rectified "
+        "already: drop --calib, or give --source");
   const bool detect = c.detection && job.until.empty();
   if (job.robot == "sim" && !detect)
     throw Error("--robot sim needs detection and tracking: drop --detect off / --until");

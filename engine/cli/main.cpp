@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "display_probe.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/version.h"
 
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
     if (command == "head") return runHead(args);
     if (command == "base") return runBase(args);
     if (command == "profile") return runProfile(args);
+    if (command == kDisplayProbeCommand) return probeDisplay();
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
     return 2;
   } catch (const horopter::Error& e) {
