@@ -110,7 +110,8 @@ constexpr CommandOption kOptions[] = {
      .value = "F",
      .fallback = "atan2",
      .choices = "atan2,paper",
-     .help = "atan2 (3-D head point) or paper (tan = u / (d lambda f))"},
+     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
+             "lambda f)"},
     {.kind = OptionKind::Switch,
      .flag = "--no-head-control",
      .help = "the head stays still (open loop)"},

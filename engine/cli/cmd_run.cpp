@@ -75,8 +75,7 @@ const char* kRunHelpStart =
     "movement's posterior, decision and action, and with --robot the robot's telemetry),\n"
     "still_*.png and summary.json (and telemetry.jsonl with --robot). With no options: 300\n"
     "frames of the built-in synthetic scene. Ctrl-C stops capture and finishes the frames\n"
-    "in flight; with --robot it first latches the base's emergency stop.\n\n"
-    "Options:\n";
+    "in flight; with --robot it first latches the base's emergency stop.\n\n";
 
 constexpr CommandOption kOptions[] = {
     {.kind = OptionKind::Heading, .flag = "Source"},
@@ -155,13 +154,15 @@ constexpr CommandOption kOptions[] = {
      .value = "SCOPE",
      .fallback = "region",
      .choices = "region,full,off",
-     .help = "inside the horopter, the whole image, or no detection"},
+     .help = "where faces and hands are detected: inside the horopter, the whole image, or "
+             "nowhere"},
     {.kind = OptionKind::Choice,
      .flag = "--head-formula",
      .value = "F",
      .fallback = "atan2",
      .choices = "atan2,paper",
-     .help = "atan2 (3-D head point) or paper (tan = u / (d lambda f))"},
+     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
+             "lambda f)"},
     {.kind = OptionKind::Switch,
      .flag = "--no-head-control",
      .help = "synthetic scene: the head stays still (default: closed loop, a command from "
@@ -180,9 +181,9 @@ constexpr CommandOption kOptions[] = {
      .value = "R",
      .fallback = "none",
      .choices = "none,sim",
-     .help = "sim: the real DYNAMIXEL head and Segway RMP drivers on simulated devices (a pty "
-             "and an in-process CAN bus) receive the head commands and the movement's base "
-             "velocities; out/telemetry.jsonl logs commands, measured angles and odometry "
+     .help = "with sim, the real DYNAMIXEL head and Segway RMP drivers on simulated devices (a "
+             "pty and an in-process CAN bus) receive the head commands and the movement's base "
+             "velocities, and out/telemetry.jsonl logs commands, measured angles and odometry "
              "(real robots: horopter head / horopter base)"},
     {.kind = OptionKind::Heading, .flag = "Scheduling"},
     {.kind = OptionKind::Text,

@@ -183,7 +183,7 @@ std::string commandOptionsHelp(std::span<const CommandOption> table) {
     else if (o.kind == OptionKind::Number && !unbounded(o))
       text << "; " << o.min << ".." << o.max;
     else if (o.kind == OptionKind::Choice)
-      text << ": " << choiceText(o);
+      text << "; " << choiceText(o);
     if (*o.unit) text << " " << o.unit;
     if (*o.fallback) text << " (default " << o.fallback << ")";
     out += helpEntry(name.str(), text.str());

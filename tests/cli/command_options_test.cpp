@@ -119,7 +119,7 @@ TEST(CommandOptions, HelpListsEveryFlagWithItsRangeAndDefault) {
   EXPECT_NE(help.find("  --frames N"), std::string::npos);
   EXPECT_NE(help.find("frames to run; 1..1000 (default 300)"), std::string::npos);
   EXPECT_NE(help.find("camera rate; 0..240 frames/s\n"), std::string::npos);
-  EXPECT_NE(help.find("where to detect: region, full or both (default region)"), std::string::npos);
+  EXPECT_NE(help.find("where to detect; region, full or both (default region)"), std::string::npos);
   EXPECT_NE(help.find("  -o, --out DIR"), std::string::npos);
   EXPECT_NE(help.find("  --json "), std::string::npos);
   for (const std::string& flag : commandOptionFlags(kTable))
