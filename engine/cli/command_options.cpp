@@ -76,9 +76,35 @@ const char* kindName(OptionKind k) {
   return "?";
 }
 
+// A table's own mistakes (a default outside its range or choices, a flag
+// declared twice) are programming errors: every run of the command finds
+// them, and so does the test that runs every command's parser
+// (cli.help_lists_every_flag).
+void checkTable(std::span<const CommandOption> table) {
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const CommandOption& o = table[i];
+    if (o.kind == OptionKind::Heading) continue;
+    for (std::size_t j = 0; j < i; ++j)
+      for (const char* name : {o.flag, o.alias})
+        if (*name && table[j].kind != OptionKind::Heading &&
+            (std::string(name) == table[j].flag || std::string(name) == table[j].alias))
+          throw std::logic_error(std::string("option ") + name + " is declared twice");
+    if (o.kind == OptionKind::Choice && !*o.choices)
+      throw std::logic_error(std::string("option ") + o.flag + " has no choices");
+    if (!*o.fallback || !takesValue(o)) continue;
+    try {
+      check(o, o.fallback);
+    } catch (const UsageError& e) {
+      throw std::logic_error(std::string("the default of ") + o.flag +
+                             " is not one of its values: " + e.what());
+    }
+  }
+}
+
 }  // namespace
 
 CommandOptions::CommandOptions(Args& args, std::span<const CommandOption> table) : table_(table) {
+  checkTable(table);
   for (const CommandOption& o : table) {
     if (o.kind == OptionKind::Heading) continue;
     int seen = 0;

@@ -42,7 +42,8 @@ struct CommandOption {
 // within their range, a choice must be one of its values. Every error is a
 // UsageError naming the flag (and the range or the choices). The getters
 // take a flag of the table; a flag the table lacks, or a getter of another
-// kind, is a programming error (std::logic_error).
+// kind, is a programming error (std::logic_error), as is a table whose
+// default lies outside its range or choices, or that declares a flag twice.
 class CommandOptions {
  public:
   CommandOptions(Args& args, std::span<const CommandOption> table);

@@ -113,6 +113,26 @@ TEST(CommandOptions, ReadingAFlagTheTableLacksIsAProgrammingError) {
   EXPECT_THROW(o.number("--fps"), std::logic_error);   // no default: optionalNumber
 }
 
+TEST(CommandOptions, AMalformedTableIsAProgrammingError) {
+  constexpr CommandOption kDefaultOutOfRange[] = {{.kind = OptionKind::Integer,
+                                                   .flag = "--n",
+                                                   .value = "N",
+                                                   .min = 1,
+                                                   .max = 9,
+                                                   .fallback = "0"}};
+  constexpr CommandOption kDefaultNotAChoice[] = {
+      {.kind = OptionKind::Choice, .flag = "--c", .value = "C", .fallback = "z", .choices = "a,b"}};
+  constexpr CommandOption kTwice[] = {
+      {.kind = OptionKind::Switch, .flag = "--x"},
+      {.kind = OptionKind::Text, .flag = "--y", .alias = "--x", .value = "Y"}};
+  Line line({});
+  Args args = line.args();
+  EXPECT_THROW(CommandOptions(args, kDefaultOutOfRange), std::logic_error);
+  EXPECT_THROW(CommandOptions(args, kDefaultNotAChoice), std::logic_error);
+  EXPECT_THROW(CommandOptions(args, kTwice), std::logic_error);
+  EXPECT_NO_THROW(CommandOptions(args, kTable));
+}
+
 TEST(CommandOptions, HelpListsEveryFlagWithItsRangeAndDefault) {
   const std::string help = commandOptionsHelp(kTable);
   EXPECT_NE(help.find("Input:\n"), std::string::npos);

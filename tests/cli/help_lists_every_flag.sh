@@ -21,12 +21,16 @@ for cmd in $commands; do
     sed -n 's/^  \(-[a-zA-Z], \)\{0,1\}\(--\{0,1\}[a-zA-Z][a-z0-9-]*\)\( [^ ]*\)\{0,1\}\(  .*\)\{0,1\}$/\1\2/p' |
     sed 's/, /\n/' | sort -u)
   # (A command that ignored the variable would start its work: the timeout ends it.)
-  read=$(HOROPTER_LIST_FLAGS=1 timeout 20 "$horopter" "$cmd" 2>/dev/null | sort -u || true)
+  errors=$(mktemp)
+  read=$(HOROPTER_LIST_FLAGS=1 timeout 20 "$horopter" "$cmd" 2>"$errors" | sort -u || true)
   if [ -z "$read" ]; then
-    echo "$cmd: HOROPTER_LIST_FLAGS printed no flag"
+    # A malformed table (a default out of range...) stops every run: its error says which.
+    echo "$cmd: HOROPTER_LIST_FLAGS printed no flag: $(cat "$errors")"
+    rm -f "$errors"
     failed=1
     continue
   fi
+  rm -f "$errors"
   only_listed=$(comm -23 <(echo "$listed") <(echo "$read"))
   only_read=$(comm -13 <(echo "$listed") <(echo "$read"))
   if [ -n "$only_listed" ]; then
