@@ -1,6 +1,8 @@
 #include "args.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <thread>
 
@@ -14,7 +16,12 @@ Args::Args(int argc, char** argv, int first) {
     args_.emplace_back(argv[i]);
 }
 
+void Args::noteAsked(const std::string& name) {
+  if (std::find(asked_.begin(), asked_.end(), name) == asked_.end()) asked_.push_back(name);
+}
+
 bool Args::flag(const std::string& name) {
+  noteAsked(name);
   for (auto it = args_.begin(); it != args_.end(); ++it) {
     if (*it == name) {
       args_.erase(it);
@@ -25,9 +32,10 @@ bool Args::flag(const std::string& name) {
 }
 
 std::optional<std::string> Args::value(const std::string& name) {
+  noteAsked(name);
   for (auto it = args_.begin(); it != args_.end(); ++it) {
     if (*it == name) {
-      if (it + 1 == args_.end()) throw Error(name + " needs a value");
+      if (it + 1 == args_.end()) throw UsageError(name + " needs a value");
       std::string v = *(it + 1);
       args_.erase(it, it + 2);
       return v;
@@ -43,7 +51,8 @@ std::optional<std::string> Args::value(const std::string& name) {
 
 int Args::intValue(const std::string& name, int fallback, int min, int max) {
   const auto v = value(name);
-  return v ? static_cast<int>(parseInteger(*v, name, min, max)) : fallback;
+  return v ? static_cast<int>(asUsageError([&] { return parseInteger(*v, name, min, max); }))
+           : fallback;
 }
 
 double Args::doubleValue(const std::string& name, double fallback, double min, double max) {
@@ -53,7 +62,7 @@ double Args::doubleValue(const std::string& name, double fallback, double min, d
 std::optional<double> Args::optionalDouble(const std::string& name, double min, double max) {
   const auto v = value(name);
   if (!v) return std::nullopt;
-  return parseNumber(*v, name, min, max);
+  return asUsageError([&] { return parseNumber(*v, name, min, max); });
 }
 
 std::string Args::stringValue(const std::string& name, const std::string& fallback) {
@@ -75,23 +84,30 @@ std::vector<std::string> Args::positionals() {
 }
 
 void Args::finish(const std::string& command) const {
+  if (const char* list = std::getenv("HOROPTER_LIST_FLAGS"); list && *list) {
+    for (const std::string& name : asked_)
+      if (name != "--help" && name != "-h") std::cout << name << "\n";
+    std::cout.flush();
+    std::exit(0);
+  }
   if (args_.empty()) return;
-  throw Error("unknown argument '" + args_.front() + "' for '" + command + "': see horopter " +
-              command + " --help");
+  throw UsageError("unknown argument '" + args_.front() + "' for '" + command + "': see horopter " +
+                   command + " --help");
 }
 
 StereoParams parseStereoFlags(Args& args, StereoParams p) {
   for (const IntOption<StereoParams>& o : stereoOptions())
     p.*o.member = args.intValue(o.flag, p.*o.member, o.min, o.max);
-  if (auto v = args.value("--pre-filter-type")) p.preFilterType = parsePreFilterType(*v);
-  validate(p);
+  if (auto v = args.value("--pre-filter-type"))
+    p.preFilterType = asUsageError([&] { return parsePreFilterType(*v); });
+  asUsageError([&] { validate(p); });
   return p;
 }
 
 MedianParams parseMedianFlags(Args& args, MedianParams m) {
   for (const IntOption<MedianParams>& o : medianOptions())
     m.*o.member = args.intValue(o.flag, m.*o.member, o.min, o.max);
-  validate(m);
+  asUsageError([&] { validate(m); });
   return m;
 }
 
@@ -101,12 +117,12 @@ ImageSize parseImageSize(const std::string& text, const std::string& option, Ima
                                std::to_string(min.height) + ".." + std::to_string(max.width) + "x" +
                                std::to_string(max.height) + ", got '" + text + "'";
   const auto x = text.find('x');
-  if (x == std::string::npos) throw Error(expected);
+  if (x == std::string::npos) throw UsageError(expected);
   try {
     return {static_cast<int>(parseInteger(text.substr(0, x), option, min.width, max.width)),
             static_cast<int>(parseInteger(text.substr(x + 1), option, min.height, max.height))};
   } catch (const Error&) {
-    throw Error(expected);
+    throw UsageError(expected);
   }
 }
 
@@ -129,7 +145,8 @@ void optionHelp(std::ostringstream& o, const IntOption<Params>& option, const Pa
 
 }  // namespace
 
-std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
+std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m,
+                            const std::string& threadsDefault) {
   std::ostringstream o;
   o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n";
   for (const IntOption<StereoParams>& option : stereoOptions())
@@ -137,21 +154,29 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
   o << "  --pre-filter-type T      xsobel or none (default " << toString(p.preFilterType) << ")\n";
   for (const IntOption<MedianParams>& option : medianOptions())
     optionHelp(o, option, m);
-  o << "  --threads N              threads for the front end's stripes, 1..256 (default: all "
-    << std::max(1u, std::thread::hardware_concurrency()) << ")\n";
+  o << "  --threads N              threads for the front end's stripes, 1..256 (default: "
+    << (threadsDefault.empty()
+            ? "all " + std::to_string(std::max(1u, std::thread::hardware_concurrency()))
+            : threadsDefault)
+    << ")\n";
   return o.str();
 }
 
 std::string optionHelpLine(const std::string& flag, const std::string& help, double min, double max,
                            const std::string& unit, double fallback) {
-  constexpr std::size_t kIndent = 21, kWidth = 88;
   std::ostringstream range;
   range << "; " << min << ".." << max << (unit.empty() ? "" : " " + unit) << " (default "
         << fallback << ")";
-  std::istringstream words(help + range.str());
+  return helpEntry(flag, help + range.str());
+}
+
+std::string helpEntry(const std::string& flag, const std::string& text) {
+  constexpr std::size_t kIndent = 21, kWidth = 88;
+  std::istringstream words(text);
   std::string line = "  " + flag, out, word;
-  // The flag takes the first line alone when it reaches into the text's column.
-  if (line.size() + 1 > kIndent) {
+  // The flag takes the first line alone when it comes within two spaces of
+  // the text's column.
+  if (line.size() + 2 > kIndent) {
     out += line + "\n";
     line.clear();
   }

@@ -13,6 +13,28 @@
 
 namespace horopter::cli {
 
+// A wrong command line: an unknown flag, a value out of range or malformed,
+// a missing or contradictory option, a file an option names that is missing.
+// Thrown before a command does any work; `horopter` exits with 2 for it (1
+// for an error during the work).
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Runs `parse` and turns a horopter::Error it throws (a library's check of
+// an option's value) into a UsageError with the same message.
+template <class F>
+auto asUsageError(F&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 class Args {
  public:
   Args(int argc, char** argv, int first);
@@ -31,15 +53,22 @@ class Args {
   std::string stringValue(const std::string& name, const std::string& fallback);
   // The remaining positional arguments (those not starting with "--"), removed.
   std::vector<std::string> positionals();
-  // Throws horopter::Error if anything is left: an unknown flag or extra argument.
+  // Throws UsageError if anything is left: an unknown flag or extra argument.
+  // With HOROPTER_LIST_FLAGS=1 in the environment it prints instead every
+  // flag the command asked for (but --help and -h), one a line, and exits 0
+  // before any work: tests/cli/help_lists_every_flag.sh compares that with
+  // what --help lists.
   void finish(const std::string& command) const;
 
  private:
+  void noteAsked(const std::string& name);
+
   std::vector<std::string> args_;
+  std::vector<std::string> asked_;  // every flag name asked for, in order
 };
 
 // "WxH" with each side within its range; anything else ("640x480junk",
-// "640 x 480", "-1x5") is an error naming `option`.
+// "640 x 480", "-1x5") is a UsageError naming `option`.
 struct ImageSize {
   int width = 0, height = 0;
 };
@@ -49,11 +78,12 @@ ImageSize parseImageSize(const std::string& text, const std::string& option, Ima
 // The stereo flags every command shares (kebab-case names of StereoParams).
 StereoParams parseStereoFlags(Args& args, StereoParams defaults);
 MedianParams parseMedianFlags(Args& args, MedianParams defaults);
-// --threads N: 1..256, default all hardware threads.
 // --threads, 1..256; `fallback` when absent (0: all cores).
 int parseThreads(Args& args, int fallback = 0);
-// Help text for those flags, with the defaults.
-std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median);
+// Help text for those flags, with the defaults; `threadsDefault` says what
+// --threads defaults to where the command's fallback is not all cores.
+std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median,
+                            const std::string& threadsDefault = "");
 
 // The flags of a tuning table (detectorOptions(), trackerOptions()...), each
 // parsed strictly within its range; absent flags keep p's values.
@@ -62,15 +92,20 @@ Params parseOptionFlags(Args& args, std::span<const NumberOption<Params>> table,
   for (const NumberOption<Params>& o : table) {
     const auto v = args.value(o.flag);
     if (!v) continue;
-    if (o.integer())
-      o.set(p,
-            static_cast<double>(parseInteger(*v, o.flag, static_cast<long long>(std::ceil(o.min)),
-                                             static_cast<long long>(std::floor(o.max)))));
-    else
-      o.set(p, parseNumber(*v, o.flag, o.min, o.max));
+    asUsageError([&] {
+      if (o.integer())
+        o.set(p,
+              static_cast<double>(parseInteger(*v, o.flag, static_cast<long long>(std::ceil(o.min)),
+                                               static_cast<long long>(std::floor(o.max)))));
+      else
+        o.set(p, parseNumber(*v, o.flag, o.min, o.max));
+    });
   }
   return p;
 }
+
+// One help entry: "  FLAG" and `text` beside it, wrapped to 88 columns.
+std::string helpEntry(const std::string& flag, const std::string& text);
 
 // One help entry, "  --flag X  help; min..max unit (default D)", wrapped.
 std::string optionHelpLine(const std::string& flag, const std::string& help, double min, double max,

@@ -8,6 +8,7 @@
 #include <memory>
 #include <thread>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/can_transports.hpp"
@@ -35,19 +36,79 @@ const char* kBaseHelp =
     "last zero command ends any ramp still running. Measured on the simulator: from 0.4 m/s\n"
     "about 0.8 s and 0.17 m, from 0.5 m/s about 1 s and 0.26 m. To stop without the ramp,\n"
     "press the RMP's own e-stop button.\n\n"
-    "  --can IF            SocketCAN interface, e.g. can0\n"
-    "  --usb DEV           the RMP's USB interface as a serial device, e.g. /dev/ttyUSB1\n"
-    "  --baud N            --usb baud rate (default 460800, as libsegwayrmp)\n"
-    "  --sim               a simulated RMP on a pseudo-terminal (through --usb's serial path)\n"
-    "  --model M           rmp200 (default), rmp400, rmp100 or rmp50 (the counts scaling)\n"
-    "  --linear V          m/s forward (default 0)\n"
-    "  --angular W         rad/s, positive turns left (default 0)\n"
-    "  --duration S        seconds (default 2, at most 60)\n"
-    "  --max-linear V      safety limit, m/s (default 0.5)\n"
-    "  --max-angular W     safety limit, rad/s (default 1.0)\n"
-    "  --estop             engage the latching emergency stop first: the base is held at zero\n"
-    "                      (commands are ignored) and the state is printed\n"
-    "  --json              one JSON object per printed reading\n";
+    "Options:\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--can",
+     .value = "IF",
+     .help = "SocketCAN interface, e.g. can0"},
+    {.kind = OptionKind::Text,
+     .flag = "--usb",
+     .value = "DEV",
+     .help = "the RMP's USB interface as a serial device, e.g. /dev/ttyUSB1"},
+    {.kind = OptionKind::Integer,
+     .flag = "--baud",
+     .value = "N",
+     .min = 300,
+     .max = 10000000,
+     .fallback = "460800",
+     .help = "--usb baud rate (460800: as libsegwayrmp)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--sim",
+     .help = "a simulated RMP on a pseudo-terminal (through --usb's serial path)"},
+    {.kind = OptionKind::Choice,
+     .flag = "--model",
+     .value = "M",
+     .fallback = "rmp200",
+     .choices = "rmp200,rmp400,rmp100,rmp50",
+     .help = "the counts scaling"},
+    {.kind = OptionKind::Number,
+     .flag = "--linear",
+     .value = "V",
+     .min = -10,
+     .max = 10,
+     .unit = "m/s",
+     .fallback = "0",
+     .help = "forward velocity"},
+    {.kind = OptionKind::Number,
+     .flag = "--angular",
+     .value = "W",
+     .min = -10,
+     .max = 10,
+     .unit = "rad/s",
+     .fallback = "0",
+     .help = "turn rate, positive turns left"},
+    {.kind = OptionKind::Number,
+     .flag = "--duration",
+     .value = "S",
+     .min = 0,
+     .max = 60,
+     .unit = "s",
+     .fallback = "2",
+     .help = "how long to drive, above 0"},
+    {.kind = OptionKind::Number,
+     .flag = "--max-linear",
+     .value = "V",
+     .min = 0,
+     .max = 10,
+     .unit = "m/s",
+     .fallback = "0.5",
+     .help = "safety limit, above 0"},
+    {.kind = OptionKind::Number,
+     .flag = "--max-angular",
+     .value = "W",
+     .min = 0,
+     .max = 10,
+     .unit = "rad/s",
+     .fallback = "1.0",
+     .help = "safety limit, above 0"},
+    {.kind = OptionKind::Switch,
+     .flag = "--estop",
+     .help = "engage the latching emergency stop first: the base is held at zero (commands are "
+             "ignored) and the state is printed"},
+    {.kind = OptionKind::Switch, .flag = "--json", .help = "one JSON object per printed reading"},
+};
 
 void print(const std::optional<hw::Odometry>& o, const hw::BaseHealth& h, double t, bool estop,
            bool json) {
@@ -86,30 +147,28 @@ void print(const std::optional<hw::Odometry>& o, const hw::BaseHealth& h, double
 
 int runBase(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kBaseHelp;
+    std::cout << kBaseHelp << commandOptionsHelp(kOptions);
     return 0;
   }
-  const auto can = args.value("--can");
-  const auto usb = args.value("--usb");
-  const bool sim = args.flag("--sim");
-  const int baud = args.intValue("--baud", 460800);
-  const std::string model = args.stringValue("--model", "rmp200");
-  const double linear = args.doubleValue("--linear", 0);
-  const double angular = args.doubleValue("--angular", 0);
-  const double duration = args.doubleValue("--duration", 2);
-  hw::RmpBaseOptions options;
-  options.scaling = hw::rmp::scalingByName(model);
-  options.limits.maxLinear = args.doubleValue("--max-linear", options.limits.maxLinear);
-  options.limits.maxAngular = args.doubleValue("--max-angular", options.limits.maxAngular);
-  const bool estop = args.flag("--estop");
-  const bool json = args.flag("--json");
+  const CommandOptions opts(args, kOptions);
   args.finish("base");
+  const auto can = opts.optionalText("--can");
+  const auto usb = opts.optionalText("--usb");
+  const bool sim = opts.on("--sim");
+  const int baud = static_cast<int>(opts.integer("--baud"));
+  const double linear = opts.number("--linear");
+  const double angular = opts.number("--angular");
+  const double duration = opts.number("--duration");
+  hw::RmpBaseOptions options;
+  options.scaling = asUsageError([&] { return hw::rmp::scalingByName(opts.text("--model")); });
+  options.limits.maxLinear = opts.number("--max-linear");
+  options.limits.maxAngular = opts.number("--max-angular");
+  const bool estop = opts.on("--estop");
+  const bool json = opts.on("--json");
   if (int(can.has_value()) + int(usb.has_value()) + int(sim) != 1)
-    throw Error("give exactly one of --can IF, --usb DEV or --sim");
-  if (!(duration > 0 && duration <= 60)) throw Error("--duration must be in (0, 60] s");
-  if (!std::isfinite(linear) || !std::isfinite(angular))
-    throw Error("--linear/--angular must be numbers");
-  hw::validate(options.limits);
+    throw UsageError("give exactly one of --can IF, --usb DEV or --sim");
+  if (!(duration > 0)) throw UsageError("--duration must be in (0, 60] s");
+  asUsageError([&] { hw::validate(options.limits); });
   if (std::abs(linear) > options.limits.maxLinear || std::abs(angular) > options.limits.maxAngular)
     std::cerr << "base: the command exceeds the safety limits and will be clamped to "
               << options.limits.maxLinear << " m/s, " << options.limits.maxAngular << " rad/s\n";

@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 #include "io/image_files.hpp"
+#include "option_checks.hpp"
 
 namespace horopter::cli {
 
@@ -24,18 +25,52 @@ const char* kHelp =
     "sub-pixel refinement, intrinsics and distortion per camera, the extrinsics R, T, E and F,\n"
     "rectification (R1, R2, P1, P2, Q, valid ROIs) and the board plane's homography between\n"
     "the cameras per view. Prints the RMS reprojection error, the error per view and the mean\n"
-    "epipolar error after rectification (|y_left - y_right| of the corners).\n\n"
-    "  --left PATTERN    left images (a glob: quote it); a file name without wildcards is one "
-    "image\n"
-    "  --right PATTERN   right images; paired with the left ones by the part the wildcards match\n"
-    "  --board WxH       inner corners per row x per column (OpenCV's sample board: 9x6)\n"
-    "  --square S        side of one square, in the unit wanted for every length (0.025 = 25 mm\n"
-    "                    in metres)\n"
-    "  --min-views N     views with the board in both images needed (default 5, at least 3)\n"
-    "  --alpha A         rectification scaling: 0 = only valid pixels (default), 1 = all pixels\n"
-    "  -o, --out FILE    the calibration file, .yml/.yaml or .xml (default calib.yml); its folder\n"
-    "                    is created if missing\n\n"
-    "Views where either image misses the board are named and left out; too few left -> error.\n";
+    "epipolar error after rectification (|y_left - y_right| of the corners).\n\n";
+
+const char* kHelpEnd =
+    "\nViews where either image misses the board are named and left out; too few left -> error.\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--left",
+     .value = "PATTERN",
+     .help = "left images (a glob: quote it); a file name without wildcards is one image"},
+    {.kind = OptionKind::Text,
+     .flag = "--right",
+     .value = "PATTERN",
+     .help = "right images; paired with the left ones by the part the wildcards match"},
+    {.kind = OptionKind::Text,
+     .flag = "--board",
+     .value = "WxH",
+     .help = "inner corners per row x per column (OpenCV's sample board: 9x6)"},
+    {.kind = OptionKind::Number,
+     .flag = "--square",
+     .value = "S",
+     .min = 1e-9,
+     .max = 1e9,
+     .help = "side of one square, in the unit wanted for every length (0.025 = 25 mm in "
+             "metres)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--min-views",
+     .value = "N",
+     .min = 3,
+     .max = 100000,
+     .fallback = "5",
+     .help = "views with the board in both images needed"},
+    {.kind = OptionKind::Number,
+     .flag = "--alpha",
+     .value = "A",
+     .min = 0,
+     .max = 1,
+     .fallback = "0",
+     .help = "rectification scaling: 0 = only valid pixels, 1 = all pixels"},
+    {.kind = OptionKind::Text,
+     .flag = "--out",
+     .alias = "-o",
+     .value = "FILE",
+     .fallback = "calib.yml",
+     .help = "the calibration file, .yml/.yaml or .xml; its folder is created if missing"},
+};
 
 cv::Mat readGrey(const std::string& path) {
   cv::Mat image = readImage(path, cv::IMREAD_GRAYSCALE);
@@ -47,26 +82,28 @@ cv::Mat readGrey(const std::string& path) {
 
 int runCalibrate(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp;
+    std::cout << kHelp << commandOptionsHelp(kOptions) << kHelpEnd;
     return 0;
   }
-  const auto left = args.value("--left");
-  const auto right = args.value("--right");
-  const auto board = args.value("--board");
-  const auto square = args.optionalDouble("--square");
-  CalibrationOptions options;
-  options.minViews = args.intValue("--min-views", options.minViews);
-  options.alpha = args.doubleValue("--alpha", options.alpha);
-  const std::string out = args.stringValue("-o", args.stringValue("--out", "calib.yml"));
+  // Every option is checked, and the images listed, before any is read.
+  const CommandOptions o(args, kOptions);
   args.finish("calibrate");
-  if (!left || !right) throw Error("--left and --right image patterns are required: see --help");
-  if (!board) throw Error("--board WxH (inner corners, e.g. 9x6) is required");
-  if (!square) throw Error("--square S (the side of one square, e.g. 0.025) is required");
-  const BoardSpec spec{parseBoardSize(*board), *square};
-  if (!std::isfinite(spec.squareSize) || !(spec.squareSize > 0))
-    throw Error("--square must be a positive length, got " + std::to_string(*square));
+  const auto left = o.optionalText("--left");
+  const auto right = o.optionalText("--right");
+  const auto board = o.optionalText("--board");
+  const auto square = o.optionalNumber("--square");
+  if (!left || !right)
+    throw UsageError("--left and --right image patterns are required: see --help");
+  if (!board) throw UsageError("--board WxH (inner corners, e.g. 9x6) is required");
+  if (!square) throw UsageError("--square S (the side of one square, e.g. 0.025) is required");
+  const BoardSpec spec{asUsageError([&] { return parseBoardSize(*board); }), *square};
+  CalibrationOptions options;
+  options.minViews = static_cast<int>(o.integer("--min-views"));
+  options.alpha = o.number("--alpha");
+  const std::string out = o.text("--out");
+  requireWritableFile(out, "--out");
+  const PairedFiles files = asUsageError([&] { return pairImageFiles(*left, *right); });
 
-  const PairedFiles files = pairImageFiles(*left, *right);
   for (const std::string& f : files.unpaired)
     std::cerr << "horopter: " << f << " has no partner image: left out\n";
   std::cerr << "horopter: " << files.pairs.size() << " pairs, board " << *board << ", square "
@@ -78,8 +115,6 @@ int runCalibrate(Args& args) {
       pairs, spec.innerCorners, [](const std::string& line) { std::cerr << line << "\n"; });
   pairs.clear();
   const StereoCalibration c = calibrateStereo(detections, spec, options);
-  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
   saveStereoCalibration(c, out);
 
   const RectifiedGeometry g = rectifiedGeometry(c);

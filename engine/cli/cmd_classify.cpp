@@ -4,6 +4,7 @@
 #include <iostream>
 #include <string>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/app/interaction_stages.hpp"
 #include "horopter/core/error.hpp"
@@ -13,14 +14,16 @@
 #include "horopter/movement/body_track_file.hpp"
 #include "horopter/movement/movement.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
 
 namespace {
 
-// "S" or "S:N".
-void parseSeedRange(const std::string& text, std::uint64_t& first, int& count) {
+// "S" or "S:N", the value of `option`.
+void parseSeedRange(const std::string& text, const std::string& option, std::uint64_t& first,
+                    int& count) {
   const auto colon = text.find(':');
   try {
     std::size_t used = 0;
@@ -34,10 +37,10 @@ void parseSeedRange(const std::string& text, std::uint64_t& first, int& count) {
       if (used != b.size()) throw std::invalid_argument("");
     }
   } catch (const std::exception&) {
-    throw Error("--synthetic takes SEED or SEED:COUNT, got '" + text + "'");
+    throw UsageError(option + " takes SEED or SEED:COUNT, got '" + text + "'");
   }
   if (count < 1 || count > 100000)
-    throw Error("--synthetic SEED:COUNT needs COUNT within 1..100000");
+    throw UsageError(option + " SEED:COUNT needs COUNT within 1..100000");
 }
 
 detail::Json posteriorJson(const MovementPosterior& p) {
@@ -90,6 +93,63 @@ int classifyLive(std::uint64_t seed, int frames, DetectionScope scope, int grace
   return 0;
 }
 
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Heading, .flag = "Input"},
+    {.kind = OptionKind::Text,
+     .flag = "--track",
+     .value = "FILE",
+     .help = "a recorded body track (CSV, body_track_file.hpp); scored like --synthetic when "
+             "it has a truth column (eval-interaction --write-tracks DIR writes such tracks "
+             "from rendered trials)"},
+    {.kind = OptionKind::Text,
+     .flag = "--synthetic",
+     .value = "S[:N]",
+     .help = "N labelled sequences of the synthetic movement generator (ground-truth poses "
+             "with tracking-like noise, no rendering), seeds S..S+N-1 (N 1..100000); also "
+             "scored per movement against the labels (classification rate, spurious "
+             "decisions)"},
+    {.kind = OptionKind::Text,
+     .flag = "--live",
+     .value = "SEED",
+     .help = "a live run: the synthetic scene rendered with seed SEED through the whole "
+             "pipeline (stereo, detection, tracking, head control, movement), decisions "
+             "printed as they come, then scored against the scene's truth"},
+    {.kind = OptionKind::Heading, .flag = "Options"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "N",
+     .min = 30,
+     .max = 100000,
+     .fallback = "300",
+     .help = "--live: frames to run (300: 10 s)"},
+    {.kind = OptionKind::Choice,
+     .flag = "--scope",
+     .value = "S",
+     .fallback = "region",
+     .choices = "region,full",
+     .help = "--live: detection in the horopter's region or the full image"},
+    {.kind = OptionKind::Text,
+     .flag = "--model",
+     .value = "FILE",
+     .help = "the model (default: the default model, trained in-process from seeds "
+             "1000000..1000299)"},
+    {.kind = OptionKind::Text,
+     .flag = "--write-track",
+     .value = "FILE",
+     .help = "with --synthetic (one sequence): write it as a track file"},
+    {.kind = OptionKind::Integer,
+     .flag = "--grace-frames",
+     .value = "N",
+     .min = 0,
+     .max = 300,
+     .fallback = "15",
+     .help = "scoring: frames after a movement's end where its decision still counts"},
+    {.kind = OptionKind::Switch, .flag = "--quiet", .help = "print only the summary"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "one JSON object: decisions (and score)"},
+};
+
 }  // namespace
 
 int runClassify(Args& args) {
@@ -99,65 +159,49 @@ int runClassify(Args& args) {
            "                         [options]\n\n"
            "Runs the movement chain (LMA features, the Bayesian classifier, the behaviour\n"
            "layer) and prints each decision with its posterior and the robot's action.\n\n"
-           "Input:\n"
-           "  --track FILE            a recorded body track (CSV, body_track_file.hpp); scored\n"
-           "                          like --synthetic when it has a truth column "
-           "(eval-interaction\n"
-           "                          --write-tracks DIR writes such tracks from rendered trials)\n"
-           "  --synthetic S[:N]       N labelled sequences of the synthetic movement generator\n"
-           "                          (ground-truth poses with tracking-like noise, no "
-           "rendering),\n"
-           "                          seeds S..S+N-1; also scored per movement against the labels\n"
-           "                          (classification rate, spurious decisions)\n"
-           "  --live SEED             a live run: the synthetic scene rendered with seed SEED\n"
-           "                          through the whole pipeline (stereo, detection, tracking,\n"
-           "                          head control, movement), decisions printed as they come,\n"
-           "                          then scored against the scene's truth\n"
-           "Options:\n"
-           "  --frames N              --live: frames to run (default 300, 10 s)\n"
-           "  --scope S               --live: detection in the horopter's region or the full "
-           "image\n"
-           "                          (region or full, default region)\n"
-           "  --model FILE            the model (default: the default model, trained in-process\n"
-           "                          from seeds 1000000..1000299)\n"
-           "  --write-track FILE      with --synthetic (one sequence): write it as a track file\n"
-           "  --grace-frames N        scoring: frames after a movement's end where its decision\n"
-           "                          still counts (default 15)\n"
-           "  --quiet                 print only the summary\n"
-           "  --json                  one JSON object: decisions (and score)\n"
-           "For the whole pipeline on rendered trials, see horopter eval-interaction.\n";
+        << commandOptionsHelp(kOptions)
+        << "For the whole pipeline on rendered trials, see horopter eval-interaction.\n";
     return 0;
   }
-  const std::string track = args.stringValue("--track", "");
-  const std::string synthetic = args.stringValue("--synthetic", "");
-  const std::string modelPath = args.stringValue("--model", "");
-  const std::string writeTrack = args.stringValue("--write-track", "");
-  const int grace = args.intValue("--grace-frames", 15);
-  const bool quiet = args.flag("--quiet");
-  const bool json = args.flag("--json");
-  const std::string live = args.stringValue("--live", "");
-  const int liveFrames = args.intValue("--frames", 300);
-  const std::string scopeName = args.stringValue("--scope", "region");
+  const CommandOptions o(args, kOptions);
   args.finish("classify");
+  const std::string track = o.text("--track");
+  const std::string synthetic = o.text("--synthetic");
+  const std::string live = o.text("--live");
+  const std::string modelPath = o.text("--model");
+  const std::string writeTrack = o.text("--write-track");
+  const int grace = static_cast<int>(o.integer("--grace-frames"));
+  const bool quiet = o.on("--quiet");
+  const bool json = o.on("--json");
   if (int(!track.empty()) + int(!synthetic.empty()) + int(!live.empty()) != 1)
-    throw Error(
+    throw UsageError(
         "classify needs exactly one of --track FILE, --synthetic SEED[:COUNT] or --live SEED");
+  if (!modelPath.empty()) requireFile(modelPath, "movement model");
   if (!live.empty()) {
     std::uint64_t seed = 0;
     int count = 0;
-    parseSeedRange(live, seed, count);
-    if (count != 1) throw Error("--live runs one scene: give one SEED");
-    if (liveFrames < 30 || liveFrames > 100000) throw Error("--frames must be within 30..100000");
-    if (scopeName != "region" && scopeName != "full")
-      throw Error("--scope takes region or full, got '" + scopeName + "'");
+    parseSeedRange(live, "--live", seed, count);
+    if (count != 1) throw UsageError("--live runs one scene: give one SEED");
     if (json || !writeTrack.empty())
-      throw Error("--live prints text only (no --json, --write-track)");
+      throw UsageError("--live prints text only (no --json, --write-track)");
     return classifyLive(
-        seed, liveFrames,
-        scopeName == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion, grace,
-        loadOrTrainMovementModel(modelPath), quiet);
+        seed, static_cast<int>(o.integer("--frames")),
+        o.text("--scope") == "full" ? DetectionScope::FullImage : DetectionScope::HoropterRegion,
+        grace, loadOrTrainMovementModel(modelPath), quiet);
   }
-  if (grace < 0 || grace > 300) throw Error("--grace-frames must be within 0..300");
+  if (o.given("--frames") || o.given("--scope"))
+    throw UsageError("--frames and --scope are for --live");
+  if (!writeTrack.empty() && synthetic.empty()) throw UsageError("--write-track needs --synthetic");
+  std::uint64_t first = 0;
+  int count = 0;
+  if (!synthetic.empty()) {
+    parseSeedRange(synthetic, "--synthetic", first, count);
+    if (!writeTrack.empty() && count != 1)
+      throw UsageError("--write-track writes one sequence: use --synthetic SEED");
+    if (!writeTrack.empty()) requireWritableFile(writeTrack, "--write-track");
+  } else {
+    requireFile(track, "track file");
+  }
 
   std::vector<LabelledSequence> inputs;
   bool labelled = false;
@@ -168,11 +212,6 @@ int runClassify(Args& args) {
     labelled = !s.labels.empty();
     inputs.push_back(std::move(s));
   } else {
-    std::uint64_t first = 0;
-    int count = 0;
-    parseSeedRange(synthetic, first, count);
-    if (!writeTrack.empty() && count != 1)
-      throw Error("--write-track writes one sequence: use --synthetic SEED");
     const TrainingOptions defaults;
     if (modelPath.empty() && first < defaults.firstSeed + defaults.sequences &&
         first + count > defaults.firstSeed)
@@ -186,7 +225,6 @@ int runClassify(Args& args) {
     }
     labelled = true;
   }
-  if (!writeTrack.empty() && !labelled) throw Error("--write-track needs --synthetic");
 
   const auto model = loadOrTrainMovementModel(modelPath);
   MovementScore score;

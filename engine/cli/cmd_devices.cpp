@@ -1,6 +1,7 @@
 // `horopter devices`: the CPU, the backends and the OpenCL devices here.
 #include <iostream>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/devices.hpp"
@@ -9,6 +10,14 @@
 
 namespace horopter::cli {
 
+namespace {
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Switch, .flag = "--json", .help = "one JSON object on stdout"},
+};
+
+}  // namespace
+
 int runDevices(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
     std::cout << "Usage: horopter devices [--json]\n\n"
@@ -16,11 +25,13 @@ int runDevices(Args& args) {
                  "whether it runs here), and the OpenCL platforms and devices. `auto` picks the\n"
                  "last available backend; HOROPTER_BACKEND=name overrides it. OpenCL is chosen\n"
                  "with --backend opencl (a GPU if present, else the CPU device), opencl:N or a\n"
-                 "part of a device's name.\n";
+                 "part of a device's name.\n\n"
+              << commandOptionsHelp(kOptions);
     return 0;
   }
-  const bool asJson = args.flag("--json");
+  const CommandOptions opts(args, kOptions);
   args.finish("devices");
+  const bool asJson = opts.on("--json");
   const CpuInfo cpu = probeCpu();
   const OpenClReport cl = probeOpenCl();
   const Backend& chosen = findBackend("auto");

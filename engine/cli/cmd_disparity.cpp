@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "default_input.hpp"
 #include "horopter/core/error.hpp"
@@ -15,6 +16,7 @@
 #include "horopter/vision/geometry.hpp"
 #include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
+#include "option_checks.hpp"
 
 namespace horopter::cli {
 
@@ -77,38 +79,47 @@ int runPair(const PairJob& job) {
   return 0;
 }
 
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Heading, .flag = "Input"},
+    {.kind = OptionKind::Switch,
+     .flag = "--example",
+     .help = "Middlebury's Aloe pair from Debian's opencv-doc instead of LEFT RIGHT"},
+    {.kind = OptionKind::Heading, .flag = "Horopter zone"},
+    {.kind = OptionKind::Number,
+     .flag = "--fixation-disparity",
+     .value = "D",
+     .min = 1e-3,
+     .max = 1e6,
+     .unit = "px",
+     .help = "disparity of the fixation point on the centre column; the Vieth-Mueller circle "
+             "passes through it and both cameras (default: the middle of the search range)"},
+    {.kind = OptionKind::Number,
+     .flag = "--focal-px",
+     .value = "F",
+     .min = 1e-3,
+     .max = 1e7,
+     .unit = "px",
+     .help = "focal length of the rectified pair (default: the image width)"},
+    {.kind = OptionKind::Heading, .flag = "Other"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "scalar, avx2, opencl... or auto (see horopter devices)"},
+    {.kind = OptionKind::Text,
+     .flag = "--out",
+     .alias = "-o",
+     .value = "DIR",
+     .fallback = "out",
+     .help = "output folder"},
+};
+
 const char* kPairHelpTail =
-    "Horopter zone:\n"
-    "  --fixation-disparity D   disparity (px) of the fixation point on the centre column;\n"
-    "                           the Vieth-Mueller circle passes through it and both cameras\n"
-    "                           (default: the middle of the search range)\n"
-    "  --focal-px F             focal length of the rectified pair (default: image width)\n"
-    "Other:\n"
-    "  --backend B              scalar, avx2 or auto (default auto; see horopter devices)\n"
-    "  -o, --out DIR            output folder (default out)\n"
     "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid or <= 0), DIR/disparity16.png\n"
     "(16-bit, 1/16 px + 32768, 0 = invalid: keeps negative disparities),\n"
     "DIR/disparity.pfm (Middlebury PFM, float px, inf = invalid), DIR/disparity_color.png\n"
     "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
     "DIR/segmented.png (the left image, zeroed outside the zone).\n";
-
-// A number option that must be positive and finite when given.
-std::optional<double> positiveOption(Args& args, const std::string& name) {
-  const std::optional<double> v = args.optionalDouble(name);
-  if (v && !(*v > 0 && std::isfinite(*v)))
-    throw Error(name + " must be a positive number, got " + std::to_string(*v));
-  return v;
-}
-
-void parseCommon(Args& args, PairJob& job) {
-  job.stereo = parseStereoFlags(args, job.stereo);
-  job.median = parseMedianFlags(args, job.median);
-  job.backend = args.stringValue("--backend", job.backend);
-  job.threads = parseThreads(args);
-  job.fixationDisparity = positiveOption(args, "--fixation-disparity");
-  job.focalPx = positiveOption(args, "--focal-px");
-  job.outDir = args.stringValue("-o", args.stringValue("--out", "out"));
-}
 
 }  // namespace
 
@@ -120,28 +131,40 @@ int runDisparity(Args& args) {
                  "speckle filter, hole-filling median, horopter mask) on a rectified pair.\n"
                  "--example takes Middlebury's Aloe pair from Debian's opencv-doc (1282x1110,\n"
                  "disparities 43..211) with 224 disparities unless --num-disparities is given.\n\n"
-              << stereoFlagsHelp(StereoParams{}, MedianParams{}) << kPairHelpTail;
+              << stereoFlagsHelp(StereoParams{}, MedianParams{}) << commandOptionsHelp(kOptions)
+              << kPairHelpTail;
     return 0;
   }
+  const CommandOptions o(args, kOptions);
   PairJob job;
-  const bool example = args.flag("--example");
+  const bool example = o.on("--example");
   if (example) job.stereo.numDisparities = 224;  // Aloe's disparities reach 211 px
-  parseCommon(args, job);
+  job.stereo = parseStereoFlags(args, job.stereo);
+  job.median = parseMedianFlags(args, job.median);
+  job.threads = parseThreads(args);
+  job.backend = o.text("--backend");
+  job.fixationDisparity = o.optionalNumber("--fixation-disparity");
+  job.focalPx = o.optionalNumber("--focal-px");
+  job.outDir = o.text("--out");
   const auto files = args.positionals();
   args.finish("disparity");
   if (example) {
-    if (!files.empty()) throw Error("--example takes no image paths: drop them or --example");
-    const StereoPairFiles pair = defaultStereoPair();
+    if (!files.empty()) throw UsageError("--example takes no image paths: drop them or --example");
+    const StereoPairFiles pair = asUsageError([] { return defaultStereoPair(); });
     std::cerr << "horopter: default input " << pair.left << " + " << pair.right << "\n";
     job.left = pair.left;
     job.right = pair.right;
-    return runPair(job);
+  } else {
+    if (files.size() != 2)
+      throw UsageError("horopter disparity needs LEFT and RIGHT image paths, got " +
+                       std::to_string(files.size()) + " path(s): see horopter disparity --help");
+    job.left = files[0];
+    job.right = files[1];
   }
-  if (files.size() != 2)
-    throw Error("horopter disparity needs LEFT and RIGHT image paths, got " +
-                std::to_string(files.size()) + " path(s): see horopter disparity --help");
-  job.left = files[0];
-  job.right = files[1];
+  requireFile(job.left, "left image");
+  requireFile(job.right, "right image");
+  requireBackend(job.backend);
+  requireWritableFolder(job.outDir, "--out");
   return runPair(job);
 }
 

@@ -4,11 +4,13 @@
 #include <iostream>
 #include <optional>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/stereo_eval.hpp"
 #include "io/disparity_images.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
@@ -27,6 +29,46 @@ void printRow(const char* who, const StereoScores& s) {
               s.bad2, s.avgerr, s.density, s.ms);
 }
 
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Heading, .flag = "Input"},
+    {.kind = OptionKind::Text, .flag = "--left", .value = "L", .help = "the left image"},
+    {.kind = OptionKind::Text, .flag = "--right", .value = "R", .help = "the right image"},
+    {.kind = OptionKind::Text,
+     .flag = "--gt",
+     .value = "GT",
+     .help = "the ground truth: an 8- or 16-bit image, or a PFM file"},
+    {.kind = OptionKind::Number,
+     .flag = "--gt-scale",
+     .value = "S",
+     .min = 1e-9,
+     .max = 1e9,
+     .help = "disparity = ground-truth value / S (required for images; PFM: default 1)"},
+    {.kind = OptionKind::Heading, .flag = "Other"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "scalar, avx2, opencl, opencl:N or auto"},
+    {.kind = OptionKind::Choice,
+     .flag = "--peer",
+     .value = "P",
+     .choices = "opencv",
+     .help = "also run cv::StereoBM with the same parameters and the same --threads"},
+    {.kind = OptionKind::Integer,
+     .flag = "--runs",
+     .value = "N",
+     .min = 1,
+     .max = 1000,
+     .fallback = "3",
+     .help = "timed runs per method, after one warm-up"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "print one JSON object {\"horopter\": {...}, \"opencv\": {...}}"},
+    {.kind = OptionKind::Switch,
+     .flag = "--require-peer-parity",
+     .help = "exit 1 if Horopter's bad-2.0 is worse than the peer's"},
+};
+
 }  // namespace
 
 int runEvalStereo(Args& args) {
@@ -40,43 +82,34 @@ int runEvalStereo(Args& args) {
            "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown; or\n"
            "Middlebury's PFM (float px, inf = unknown; --gt-scale defaults to 1), such as\n"
            "the disparity.pfm that horopter disparity writes.\n\n"
-        << stereoFlagsHelp(StereoParams{}, MedianParams{})
-        << "Other:\n"
-           "  --backend B              scalar, avx2, opencl, opencl:N or auto (default auto)\n"
-           "  --peer opencv            also run cv::StereoBM with the same parameters and the\n"
-           "                           same --threads\n"
-           "  --runs N                 timed runs per method, after one warm-up (default 3)\n"
-           "  --json                   print one JSON object {\"horopter\": {...}, \"opencv\": "
-           "{...}}\n"
-           "  --require-peer-parity    exit 1 if Horopter's bad-2.0 is worse than the peer's\n";
+        << stereoFlagsHelp(StereoParams{}, MedianParams{}) << commandOptionsHelp(kOptions);
     return 0;
   }
-  const std::string left = args.stringValue("--left", "");
-  const std::string right = args.stringValue("--right", "");
-  const std::string gt = args.stringValue("--gt", "");
-  const std::optional<double> scaleGiven = args.optionalDouble("--gt-scale");
+  const CommandOptions o(args, kOptions);
   const StereoParams stereo = parseStereoFlags(args, StereoParams{});
   const MedianParams median = parseMedianFlags(args, MedianParams{});
-  const std::string backendName = args.stringValue("--backend", "auto");
-  const std::string peer = args.stringValue("--peer", "");
   EvalOptions options;
-  options.timedRuns = args.intValue("--runs", 3);
   options.threads = parseThreads(args);
-  const bool asJson = args.flag("--json");
-  const bool requireParity = args.flag("--require-peer-parity");
   args.finish("eval-stereo");
-
+  const std::string left = o.text("--left");
+  const std::string right = o.text("--right");
+  const std::string gt = o.text("--gt");
+  const std::string backendName = o.text("--backend");
+  const std::string peer = o.text("--peer");
+  options.timedRuns = static_cast<int>(o.integer("--runs"));
+  const bool asJson = o.on("--json");
+  const bool requireParity = o.on("--require-peer-parity");
   if (left.empty() || right.empty() || gt.empty())
-    throw Error("eval-stereo needs --left, --right and --gt: see horopter eval-stereo --help");
+    throw UsageError("eval-stereo needs --left, --right and --gt: see horopter eval-stereo --help");
+  if (requireParity && peer.empty()) throw UsageError("--require-peer-parity needs --peer opencv");
+  requireFile(left, "left image");
+  requireFile(right, "right image");
+  requireFile(gt, "ground truth");
   // PFM ground truth is in px: its scale defaults to 1.
-  const double scale = scaleGiven ? *scaleGiven : (isPfmFile(gt) ? 1.0 : 0.0);
+  const double scale = o.optionalNumber("--gt-scale").value_or(isPfmFile(gt) ? 1.0 : 0.0);
   if (scale <= 0)
-    throw Error("eval-stereo needs --gt-scale S > 0 (disparity = ground-truth value / S)");
-  if (!peer.empty() && peer != "opencv")
-    throw Error("unknown peer '" + peer + "': the only peer is opencv");
-  if (requireParity && peer.empty()) throw Error("--require-peer-parity needs --peer opencv");
-  if (options.timedRuns < 1 || options.timedRuns > 1000)
-    throw Error("--runs must be within 1..1000");
+    throw UsageError("eval-stereo needs --gt-scale S > 0 (disparity = ground-truth value / S)");
+  requireBackend(backendName);
 
   const cv::Mat l = loadGrey(left, "left image");
   const cv::Mat r = loadGrey(right, "right image");

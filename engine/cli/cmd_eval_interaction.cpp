@@ -1,11 +1,11 @@
 // `horopter eval-interaction`: the paper's Table III on synthetic trials,
 // detection over the full image vs inside the horopter's region.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "eval/interaction_report.hpp"
 #include "eval/seed_ranges.hpp"
@@ -13,6 +13,7 @@
 #include "horopter/eval/interaction_eval.hpp"
 #include "horopter/eval/movement_training.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
@@ -66,6 +67,94 @@ void printFailures(std::FILE* out, const char* name, const InteractionScopeResul
   std::fprintf(out, "\n");
 }
 
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Integer,
+     .flag = "--trials",
+     .value = "N",
+     .min = 1,
+     .max = 10000,
+     .fallback = "20",
+     .help = "trials"},
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 1000000000,
+     .fallback = "1",
+     .help = "first trial's seed"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "F",
+     .min = 30,
+     .max = 100000,
+     .fallback = "300",
+     .help = "frames per trial (300: 10 s at 30 frames/s)"},
+    {.kind = OptionKind::Text,
+     .flag = "--model",
+     .value = "FILE",
+     .help = "the movement model (default: trained in-process, seconds)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--grace-frames",
+     .value = "N",
+     .min = 0,
+     .max = 300,
+     .fallback = "15",
+     .help = "frames after a movement's end where its decision counts"},
+    {.kind = OptionKind::Text,
+     .flag = "--size",
+     .value = "WxH",
+     .fallback = "640x480",
+     .help = "image size, 64x48..4096x4096"},
+    {.kind = OptionKind::Choice,
+     .flag = "--scope",
+     .value = "S",
+     .fallback = "both",
+     .choices = "region,full,both",
+     .help = "where faces and hands are detected"},
+    {.kind = OptionKind::Integer,
+     .flag = "--threads",
+     .value = "N",
+     .min = 1,
+     .max = 256,
+     .fallback = "1",
+     .help = "threads of the disparity stage"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "front end backend"},
+    {.kind = OptionKind::Integer,
+     .flag = "--jobs",
+     .value = "N",
+     .min = 1,
+     .max = 64,
+     .fallback = "1",
+     .help = "trials run N at a time; the rates do not depend on it, but fps and e2e fps are "
+             "then measured with the trials competing for the cores"},
+    {.kind = OptionKind::Switch,
+     .flag = "--diagnose",
+     .help = "list every trial that lost more than one movement with the first cause that "
+             "holds: never-elected, released (the godfather lost), elected-late (over 1 s after "
+             "the truth), or the part and cause with the most lost frames (see horopter "
+             "eval-tracking --diagnose); tuning seeds only"},
+    {.kind = OptionKind::Text,
+     .flag = "--write-tracks",
+     .value = "DIR",
+     .help = "write each trial's tracked body with the truth to DIR/<scope>_<seed>.csv (for "
+             "horopter classify --track)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "one JSON object: seeds, frames, and {\"full\": {...}, \"roi\": {...}}, each with "
+             "percentages 0-100 (tracker_loss, classification_rate, real_classification_rate, "
+             "frame_tracker_loss, each with its _ci95 [low, high]), the counts, "
+             "trials_lost_all, worst_trials, per_trial (every trial's outcome) and timing "
+             "(frames/s and stage times: the only part that depends on the machine)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--require-region-better",
+     .help = "exit 1 unless the region's real classification rate beats the full image's "
+             "(needs --scope both)"},
+};
+
 }  // namespace
 
 int runEvalInteraction(Args& args) {
@@ -103,76 +192,40 @@ int runEvalInteraction(Args& args) {
            "least 100 evaluation seeds, run once; --write-tracks (a look inside the trials) is\n"
            "refused on evaluation seeds.\n\n"
            "Options:\n"
-           "  --trials N         trials (default 20)\n"
-           "  --seed S           first trial's seed (default 1)\n"
-           "  --frames F         frames per trial (default 300: 10 s at 30 frames/s)\n"
-           "  --model FILE       the movement model (default: trained in-process, seconds)\n"
-           "  --grace-frames N   frames after a movement's end where its decision counts\n"
-           "                     (default 15)\n"
-           "  --size WxH         image size (default 640x480)\n"
-           "  --scope S          region, full or both (default both)\n"
-           "  --threads N        threads of the disparity stage (default 1)\n"
-           "  --backend B        front end backend (default auto)\n"
-           "  --jobs N           trials run N at a time (default 1); the rates do not depend\n"
-           "                     on it, but fps and e2e fps are then measured with the\n"
-           "                     trials competing for the cores\n"
-           "  --diagnose         list every trial that lost more than one movement with the\n"
-           "                     first cause that holds: never-elected, released (the\n"
-           "                     godfather lost), elected-late (over 1 s after the truth), or\n"
-           "                     the part and cause with the most lost frames (see\n"
-           "                     horopter eval-tracking --diagnose); tuning seeds only\n"
-           "  --write-tracks DIR write each trial's tracked body with the truth to\n"
-           "                     DIR/<scope>_<seed>.csv (for horopter classify --track)\n"
-           "  --json             one JSON object: seeds, frames, and {\"full\": {...}, \"roi\":\n"
-           "                     {...}}, each with percentages 0-100 (tracker_loss,\n"
-           "                     classification_rate, real_classification_rate,\n"
-           "                     frame_tracker_loss, each with its _ci95 [low, high]), the\n"
-           "                     counts, trials_lost_all, worst_trials, per_trial (every\n"
-           "                     trial's outcome) and timing (frames/s and stage times: the\n"
-           "                     only part that depends on the machine)\n"
-           "  --require-region-better  exit 1 unless the region's real classification rate\n"
-           "                     beats the full image's (needs --scope both)\n";
+        << commandOptionsHelp(kOptions);
     return 0;
   }
-  InteractionEvalOptions options;
-  options.trials = args.intValue("--trials", 20);
-  const int seed = args.intValue("--seed", 1);
-  options.trial.frames = args.intValue("--frames", 300);
-  const std::string modelPath = args.stringValue("--model", "");
-  options.graceFrames = args.intValue("--grace-frames", 15);
-  const std::string scopeName = args.stringValue("--scope", "both");
-  const std::string size = args.stringValue("--size", "640x480");
-  options.trial.threads = args.intValue("--threads", 1);
-  options.trial.backend = args.stringValue("--backend", "auto");
-  options.jobs = args.intValue("--jobs", 1);
-  options.writeTracksDir = args.stringValue("--write-tracks", "");
-  options.diagnose = args.flag("--diagnose");
-  const bool json = args.flag("--json");
-  const bool requireBetter = args.flag("--require-region-better");
+  const CommandOptions opts(args, kOptions);
   args.finish("eval-interaction");
-  if (options.trials < 1 || options.trials > 10000) throw Error("--trials must be within 1..10000");
-  if (seed < 0) throw Error("--seed must be >= 0");
-  if (options.trial.frames < 30 || options.trial.frames > 100000)
-    throw Error("--frames must be within 30..100000");
-  if (options.graceFrames < 0 || options.graceFrames > 300)
-    throw Error("--grace-frames must be within 0..300");
-  if (options.trial.threads < 1 || options.trial.threads > 256)
-    throw Error("--threads must be within 1..256");
-  if (options.jobs < 1 || options.jobs > 64) throw Error("--jobs must be within 1..64");
-  {
-    const ImageSize wh = parseImageSize(size, "--size", {64, 48}, {4096, 4096});
-    options.trial.width = wh.width;
-    options.trial.height = wh.height;
-  }
-  if (scopeName != "both" && scopeName != "region" && scopeName != "full")
-    throw Error("--scope takes region, full or both, got '" + scopeName + "'");
+  InteractionEvalOptions options;
+  options.trials = static_cast<int>(opts.integer("--trials"));
+  const int seed = static_cast<int>(opts.integer("--seed"));
+  options.trial.frames = static_cast<int>(opts.integer("--frames"));
+  const std::string modelPath = opts.text("--model");
+  options.graceFrames = static_cast<int>(opts.integer("--grace-frames"));
+  const std::string scopeName = opts.text("--scope");
+  const ImageSize wh = parseImageSize(opts.text("--size"), "--size", {64, 48}, {4096, 4096});
+  options.trial.width = wh.width;
+  options.trial.height = wh.height;
+  options.trial.threads = static_cast<int>(opts.integer("--threads"));
+  options.trial.backend = opts.text("--backend");
+  options.jobs = static_cast<int>(opts.integer("--jobs"));
+  options.writeTracksDir = opts.text("--write-tracks");
+  options.diagnose = opts.on("--diagnose");
+  const bool json = opts.on("--json");
+  const bool requireBetter = opts.on("--require-region-better");
   if (requireBetter && scopeName != "both")
-    throw Error("--require-region-better needs --scope both");
+    throw UsageError("--require-region-better needs --scope both");
   options.trial.seed = static_cast<std::uint64_t>(seed);
-  const eval::SeedUse seedUse = eval::trialSeedUse(options.trial.seed, options.trials, "--seed");
-  if (!options.writeTracksDir.empty()) eval::requireTuningSeeds(seedUse, "--write-tracks");
-  if (options.diagnose) eval::requireTuningSeeds(seedUse, "--diagnose");
-  if (!options.writeTracksDir.empty()) std::filesystem::create_directories(options.writeTracksDir);
+  const eval::SeedUse seedUse = asUsageError(
+      [&] { return eval::trialSeedUse(options.trial.seed, options.trials, "--seed"); });
+  if (!options.writeTracksDir.empty())
+    asUsageError([&] { eval::requireTuningSeeds(seedUse, "--write-tracks"); });
+  if (options.diagnose) asUsageError([&] { eval::requireTuningSeeds(seedUse, "--diagnose"); });
+  if (!modelPath.empty()) requireFile(modelPath, "movement model");
+  requireBackend(options.trial.backend);
+  if (!options.writeTracksDir.empty())
+    requireWritableFolder(options.writeTracksDir, "--write-tracks");
   options.model = loadOrTrainMovementModel(modelPath);
   options.progress = [&](DetectionScope scope, int i, const MovementScore& s) {
     std::fprintf(stderr, "%s trial %d/%d (seed %llu): %d movements, %d lost, %d right\n",

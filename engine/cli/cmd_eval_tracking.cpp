@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include <filesystem>
 #include <opencv2/imgproc.hpp>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "eval/bootstrap.hpp"
 #include "eval/parallel_trials.hpp"
@@ -20,6 +20,7 @@
 #include "horopter/eval/tracking_eval.hpp"
 #include "io/disparity_images.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 #include "run_annotation.hpp"
 
@@ -49,44 +50,117 @@ const char* kEvalTrackingHelpStart =
     "            a person inside the zone, over all detections\n"
     "  detect    detection stage, ms per frame; vision: every stage but capture, ms per frame\n"
     "  fps       frames per second of the whole pipeline, rendering the scene included\n\n"
-    "Options:\n"
-    "  --trials N         number of trials (default 20)\n"
-    "  --jobs N           trials run N at a time (default 1); the scores do not depend on\n"
-    "                     it, the times do (the trials compete for the cores)\n"
-    "  --seed S           first trial's seed (default 1000)\n"
-    "  --frames F         frames per trial (default 300, 10 s at 30 frames/s)\n"
-    "  --size WxH         image size (default 640x480)\n"
-    "  --scope S          region, full or both (default both)\n"
-    "  --threads N        threads of the disparity stage, 1..256 (default 1)\n"
-    "  --backend B        front end backend: scalar, avx2, opencl..., auto (default auto)\n"
-    "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
-    "  --no-head-control  the head stays still (open loop)\n"
-    "  --num-disparities N  the front end's search range, a multiple of 16 (default 96: down\n"
-    "                     to 0.7 m; nearer hands have no disparity, so no zone; a wider range\n"
-    "                     also widens the band on the left the right view cannot match)\n"
-    "Detection, election, tracking and head control (option tables):\n";
+    "Options:\n";
 
-// After the tables' flags.
-const char* kEvalTrackingHelpEnd =
-    "  --frame-hands      head control pans to frame the head and tracked hands, not only\n"
-    "                     the face (off by default: it measured worse)\n"
-    "  --no-follow-head-turns  the hand and head tracks stay where they were in the\n"
-    "                     image when the head turns (by default they move with the image)\n"
-    "  --no-depth-face-sizes  in the region, search faces of every size instead of the\n"
-    "                     sizes the zone's disparities allow (slower; for comparison)\n"
-    "  --require-region-better  exit with status 3 unless the region's tracker loss is\n"
-    "                     below the full image's (for tests)\n"
-    "  --stills DIR       write every 10th frame of each run, annotated (run's view, with the\n"
-    "                     truth's head and hands as white crosses) to DIR\n"
-    "  --diagnose         count, per part, why it was lost: the first of no-godfather,\n"
-    "                     barely-visible, right-view-out, no-disparity, outside-mask,\n"
-    "                     face-neck-cut, merged, no-skin, removed (no detection near the\n"
-    "                     truth), filtered, no-track, swapped, elsewhere (a detection there,\n"
-    "                     the track not); with -v, one line per lost part on stderr\n"
-    "  --json             print the results as one JSON object: per scope the figures,\n"
-    "                     tracker_loss_ci95 (95 % bootstrap interval over trials, as a\n"
-    "                     fraction), worst_trials and per_trial\n"
-    "  -v, --verbose      one line per trial on stderr\n";
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Integer,
+     .flag = "--trials",
+     .value = "N",
+     .min = 1,
+     .max = 100000,
+     .fallback = "20",
+     .help = "number of trials"},
+    {.kind = OptionKind::Integer,
+     .flag = "--jobs",
+     .value = "N",
+     .min = 1,
+     .max = 64,
+     .fallback = "1",
+     .help = "trials run N at a time; the scores do not depend on it, the times do (the "
+             "trials compete for the cores)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 9007199254740992.0,  // 2^53: seeds stay exact in JSON and Python
+     .fallback = "1000",
+     .help = "first trial's seed"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "F",
+     .min = 1,
+     .max = 1000000,
+     .fallback = "300",
+     .help = "frames per trial (300: 10 s at 30 frames/s)"},
+    {.kind = OptionKind::Text,
+     .flag = "--size",
+     .value = "WxH",
+     .fallback = "640x480",
+     .help = "image size, 64x64..4096x4096"},
+    {.kind = OptionKind::Choice,
+     .flag = "--scope",
+     .value = "S",
+     .fallback = "both",
+     .choices = "region,full,both",
+     .help = "where faces and hands are detected"},
+    {.kind = OptionKind::Integer,
+     .flag = "--threads",
+     .value = "N",
+     .min = 1,
+     .max = 256,
+     .fallback = "1",
+     .help = "threads of the disparity stage"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "front end backend: scalar, avx2, opencl..., auto"},
+    {.kind = OptionKind::Choice,
+     .flag = "--head-formula",
+     .value = "F",
+     .fallback = "atan2",
+     .choices = "atan2,paper",
+     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
+             "lambda f)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--no-head-control",
+     .help = "the head stays still (open loop)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--num-disparities",
+     .value = "N",
+     .min = 16,
+     .max = 1024,
+     .fallback = "96",
+     .help = "the front end's search range, a multiple of 16 (96: down to 0.7 m; nearer hands "
+             "have no disparity, so no zone; a wider range also widens the band on the left "
+             "the right view cannot match)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--frame-hands",
+     .help = "head control pans to frame the head and tracked hands, not only the face (off "
+             "by default: it measured worse)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--no-follow-head-turns",
+     .help = "the hand and head tracks stay where they were in the image when the head turns "
+             "(by default they move with the image)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--no-depth-face-sizes",
+     .help = "in the region, search faces of every size instead of the sizes the zone's "
+             "disparities allow (slower; for comparison)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--require-region-better",
+     .help = "exit with status 3 unless the region's tracker loss is below the full image's "
+             "(for tests)"},
+    {.kind = OptionKind::Text,
+     .flag = "--stills",
+     .value = "DIR",
+     .help = "write every 10th frame of each run, annotated (run's view, with the truth's head "
+             "and hands as white crosses) to DIR"},
+    {.kind = OptionKind::Switch,
+     .flag = "--diagnose",
+     .help = "count, per part, why it was lost: the first of no-godfather, barely-visible, "
+             "right-view-out, no-disparity, outside-mask, face-neck-cut, merged, no-skin, "
+             "removed (no detection near the truth), filtered, no-track, swapped, elsewhere (a "
+             "detection there, the track not); with -v, one line per lost part on stderr"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "print the results as one JSON object: per scope the figures, tracker_loss_ci95 "
+             "(95 % bootstrap interval over trials, as a fraction), worst_trials and per_trial"},
+    {.kind = OptionKind::Switch,
+     .flag = "--verbose",
+     .alias = "-v",
+     .help = "one line per trial on stderr"},
+    {.kind = OptionKind::Heading, .flag = "Detection, election, tracking and head control"},
+};
 
 struct TrackingTrial {
   TrialResult result;
@@ -182,56 +256,54 @@ double pct(std::int64_t lost, std::int64_t of) {
 int runEvalTracking(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
     TrialOptions defaults;
-    std::cout << kEvalTrackingHelpStart << optionFlagsHelp(detectorOptions(), defaults.detector)
+    std::cout << kEvalTrackingHelpStart << commandOptionsHelp(kOptions)
+              << optionFlagsHelp(detectorOptions(), defaults.detector)
               << optionFlagsHelp(electionOptions(), defaults.tracker.election)
               << optionFlagsHelp(trackerOptions(), defaults.tracker)
               << optionFlagsHelp(headControlOptions(), defaults.head)
-              << optionFlagsHelp(zoneSearchOptions(), defaults.zoneSearch) << kEvalTrackingHelpEnd;
+              << optionFlagsHelp(zoneSearchOptions(), defaults.zoneSearch);
     return 0;
   }
+  const CommandOptions opts(args, kOptions);
   TrialOptions base;
-  const int trials = args.intValue("--trials", 20, 1, 100000);
-  const int jobs = args.intValue("--jobs", 1, 1, 64);
-  const long long seed = parseInteger(args.stringValue("--seed", "1000"), "--seed", 0, 1LL << 53);
-  base.frames = args.intValue("--frames", 300, 1, 1000000);
-  if (auto size = args.value("--size")) {
-    const ImageSize wh = parseImageSize(*size, "--size", {64, 64}, {4096, 4096});
-    base.width = wh.width;
-    base.height = wh.height;
-  }
-  const std::string scope = args.stringValue("--scope", "both");
-  base.threads = parseThreads(args, 1);
-  base.backend = args.stringValue("--backend", "auto");
-  const std::string formula = args.stringValue("--head-formula", "atan2");
-  base.headControl = !args.flag("--no-head-control");
-  base.stereo.numDisparities =
-      args.intValue("--num-disparities", base.stereo.numDisparities, 16, 1024);
   base.detector = parseOptionFlags(args, detectorOptions(), base.detector);
   base.tracker.election = parseOptionFlags(args, electionOptions(), base.tracker.election);
   base.tracker = parseOptionFlags(args, trackerOptions(), base.tracker);
   base.head = parseOptionFlags(args, headControlOptions(), base.head);
   base.zoneSearch = parseOptionFlags(args, zoneSearchOptions(), base.zoneSearch);
-  if (args.flag("--frame-hands")) base.head.frameHands = true;
-  if (args.flag("--no-follow-head-turns")) base.followHeadTurns = false;
-  if (args.flag("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
-  const bool requireBetter = args.flag("--require-region-better");
-  const bool json = args.flag("--json");
-  const bool verbose = args.flag("--verbose") || args.flag("-v");
-  const std::string stills = args.stringValue("--stills", "");
-  const bool diagnose = args.flag("--diagnose");
   args.finish("eval-tracking");
-  const eval::SeedUse seedUse =
-      eval::trialSeedUse(static_cast<std::uint64_t>(seed), trials, "--seed");
-  if (diagnose) eval::requireTuningSeeds(seedUse, "--diagnose");
-  if (!stills.empty()) eval::requireTuningSeeds(seedUse, "--stills");
-  if (base.stereo.numDisparities % 16 != 0)
-    throw Error("--num-disparities must be a positive multiple of 16");
-  if (scope != "region" && scope != "full" && scope != "both")
-    throw Error("--scope takes region, full or both, got '" + scope + "'");
-  if (formula != "atan2" && formula != "paper")
-    throw Error("--head-formula takes atan2 or paper, got '" + formula + "'");
-  if (requireBetter && scope != "both") throw Error("--require-region-better needs --scope both");
+  const int trials = static_cast<int>(opts.integer("--trials"));
+  const int jobs = static_cast<int>(opts.integer("--jobs"));
+  const long long seed = opts.integer("--seed");
+  base.frames = static_cast<int>(opts.integer("--frames"));
+  const ImageSize wh = parseImageSize(opts.text("--size"), "--size", {64, 64}, {4096, 4096});
+  base.width = wh.width;
+  base.height = wh.height;
+  const std::string scope = opts.text("--scope");
+  base.threads = static_cast<int>(opts.integer("--threads"));
+  base.backend = opts.text("--backend");
+  base.headControl = !opts.on("--no-head-control");
+  const std::string formula = opts.text("--head-formula");
   base.head.formula = formula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
+  base.stereo.numDisparities = static_cast<int>(opts.integer("--num-disparities"));
+  if (opts.on("--frame-hands")) base.head.frameHands = true;
+  if (opts.on("--no-follow-head-turns")) base.followHeadTurns = false;
+  if (opts.on("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
+  const bool requireBetter = opts.on("--require-region-better");
+  const bool json = opts.on("--json");
+  const bool verbose = opts.on("--verbose");
+  const std::string stills = opts.text("--stills");
+  const bool diagnose = opts.on("--diagnose");
+  const eval::SeedUse seedUse = asUsageError(
+      [&] { return eval::trialSeedUse(static_cast<std::uint64_t>(seed), trials, "--seed"); });
+  if (diagnose) asUsageError([&] { eval::requireTuningSeeds(seedUse, "--diagnose"); });
+  if (!stills.empty()) asUsageError([&] { eval::requireTuningSeeds(seedUse, "--stills"); });
+  if (base.stereo.numDisparities % 16 != 0)
+    throw UsageError("--num-disparities must be a positive multiple of 16");
+  if (requireBetter && scope != "both")
+    throw UsageError("--require-region-better needs --scope both");
+  requireBackend(base.backend);
+  if (!stills.empty()) requireWritableFolder(stills, "--stills");
 
   std::vector<DetectionScope> scopes;
   if (scope != "full") scopes.push_back(DetectionScope::HoropterRegion);
@@ -240,7 +312,6 @@ int runEvalTracking(Args& args) {
   std::vector<LossDiagnosis> causes(scopes.size());
   std::vector<std::vector<TrackingTrial>> perTrial(scopes.size());
   const bool tty = isatty(STDERR_FILENO) && !json;
-  if (!stills.empty()) std::filesystem::create_directories(stills);
   for (std::size_t k = 0; k < scopes.size(); ++k) {
     int finished = 0;
     const auto runOne = [&, k](int i) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/stereo_eval.hpp"
@@ -17,6 +18,7 @@
 #include "horopter/vision/geometry.hpp"
 #include "horopter/vision/opencv.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
@@ -37,8 +39,67 @@ const char* kHelp =
     "Real pair: a rectified pair; the zone's fixation is --fixation-disparity px on the\n"
     "  centre column (default: the median valid disparity of the full-range map, so that\n"
     "  about half the scene lies inside) and --focal-px (default: the image width). With\n"
-    "  --gt (disparity = value / K, 0 = unknown), the true zone is the ground truth's.\n\n"
-    "Zone search:\n";
+    "  --gt (disparity = value / K, 0 = unknown), the true zone is the ground truth's.\n\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Heading, .flag = "Synthetic trials"},
+    {.kind = OptionKind::Integer,
+     .flag = "--trials",
+     .value = "N",
+     .min = 1,
+     .max = 100000,
+     .fallback = "4",
+     .help = "trials"},
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 9007199254740992.0,  // 2^53: seeds stay exact in JSON and Python
+     .fallback = "10240",
+     .help = "first trial's seed"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "F",
+     .min = 1,
+     .max = 100000,
+     .fallback = "300",
+     .help = "frames per trial"},
+    {.kind = OptionKind::Heading, .flag = "Real pair"},
+    {.kind = OptionKind::Text, .flag = "--left", .value = "L", .help = "the left image"},
+    {.kind = OptionKind::Text, .flag = "--right", .value = "R", .help = "the right image"},
+    {.kind = OptionKind::Text,
+     .flag = "--gt",
+     .value = "GT",
+     .help = "ground truth (8/16-bit image or PFM) for the true zone"},
+    {.kind = OptionKind::Number,
+     .flag = "--gt-scale",
+     .value = "K",
+     .min = 1e-9,
+     .max = 1e9,
+     .help = "disparity = ground-truth value / K (needed with --gt)"},
+    {.kind = OptionKind::Number,
+     .flag = "--fixation-disparity",
+     .value = "D",
+     .min = 1e-3,
+     .max = 4096,
+     .unit = "px",
+     .help = "disparity of the fixation on the centre column (default: the full-range map's "
+             "median)"},
+    {.kind = OptionKind::Number,
+     .flag = "--focal-px",
+     .value = "F",
+     .min = 1e-3,
+     .max = 1e7,
+     .unit = "px",
+     .help = "focal length (default: the image width)"},
+    {.kind = OptionKind::Heading, .flag = "Other"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "scalar, avx2, opencl or auto"},
+    {.kind = OptionKind::Switch, .flag = "--json", .help = "print one JSON object"},
+};
 
 void printAgreement(const char* what, const MaskAgreement& a) {
   std::printf("%-34s %9.3f %% %9.3f %%   (%lld in both, %lld test only, %lld reference only)\n",
@@ -75,37 +136,40 @@ double medianDisparityPx(const StereoParams& stereo, const MedianParams& median,
 
 int runEvalZone(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{})
-              << "Other:\n"
-                 "  --backend B              scalar, avx2, opencl or auto (default auto)\n"
-                 "  --threads N              threads of each front end, 1..256 (default 1)\n"
-                 "  --json                   print one JSON object\n"
-              << stereoFlagsHelp(StereoParams{}, MedianParams{});
+    std::cout << kHelp << commandOptionsHelp(kOptions) << "Zone search:\n"
+              << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{})
+              << stereoFlagsHelp(StereoParams{}, MedianParams{}, "1");
     return 0;
   }
-  const int trials = args.intValue("--trials", 4, 1, 100000);
-  const long long seed = parseInteger(args.stringValue("--seed", "10240"), "--seed", 0, 1LL << 53);
-  const int frames = args.intValue("--frames", 300, 1, 100000);
-  const std::string left = args.stringValue("--left", "");
-  const std::string right = args.stringValue("--right", "");
-  const std::string gt = args.stringValue("--gt", "");
-  const double gtScale = args.doubleValue("--gt-scale", 0);
-  std::optional<double> fixationPx, focalPx;
-  if (auto v = args.value("--fixation-disparity"))
-    fixationPx = parseNumber(*v, "--fixation-disparity", 1e-3, 4096);
-  if (auto v = args.value("--focal-px")) focalPx = parseNumber(*v, "--focal-px", 1e-3, 1e7);
+  const CommandOptions o(args, kOptions);
   const StereoParams stereo = parseStereoFlags(args, StereoParams{});
   const MedianParams median = parseMedianFlags(args, MedianParams{});
   ZoneSearch zone = parseOptionFlags(args, zoneSearchOptions(), ZoneSearch{});
   zone.enabled = 1;  // what this command measures
-  const std::string backendName = args.stringValue("--backend", "auto");
+  // Each front end's pool: one thread unless --threads says otherwise.
   const int threads = parseThreads(args, 1);
-  const bool json = args.flag("--json");
   args.finish("eval-zone");
-  validate(zone, stereo);
-  if (left.empty() != right.empty()) throw Error("a real pair needs both --left and --right");
+  const int trials = static_cast<int>(o.integer("--trials"));
+  const long long seed = o.integer("--seed");
+  const int frames = static_cast<int>(o.integer("--frames"));
+  const std::string left = o.text("--left");
+  const std::string right = o.text("--right");
+  const std::string gt = o.text("--gt");
+  const double gtScale = o.optionalNumber("--gt-scale").value_or(0);
+  const std::optional<double> fixationPx = o.optionalNumber("--fixation-disparity");
+  const std::optional<double> focalPx = o.optionalNumber("--focal-px");
+  const std::string backendName = o.text("--backend");
+  const bool json = o.on("--json");
+  asUsageError([&] { validate(zone, stereo); });
+  if (left.empty() != right.empty()) throw UsageError("a real pair needs both --left and --right");
   if (!gt.empty() && !(gtScale > 0))
-    throw Error("--gt needs --gt-scale K > 0 (disparity = ground-truth value / K)");
+    throw UsageError("--gt needs --gt-scale K > 0 (disparity = ground-truth value / K)");
+  if (!left.empty()) {
+    requireFile(left, "left image");
+    requireFile(right, "right image");
+  }
+  if (!gt.empty()) requireFile(gt, "ground truth");
+  requireBackend(backendName);
   const Backend& backend = findBackend(backendName);
 
   ZoneEvalResult result;

@@ -3,17 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <numbers>
 #include <optional>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "geometry/zone_figure.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 #include "horopter/vision/geometry.hpp"
 #include "io/disparity_images.hpp"
+#include "option_checks.hpp"
 
 namespace horopter::cli {
 
@@ -28,30 +29,82 @@ const char* kHelp =
     "width at the fixation distance (and nearer), and the disparity thresholds the mask uses;\n"
     "writes a top-down picture: cameras, fields of view, circle, fixation point.\n"
     "Lengths are in the unit of the calibration's --square (metres for --square 0.025).\n\n"
-    "  --calib FILE        the calibration file from horopter calibrate\n"
-    "One fixation, in the rectified frame (origin midway between the cameras, z forward):\n"
-    "  --fixation D        straight ahead at distance D: the zone reaches exactly D on the axis\n"
-    "  --vergence-deg A    symmetric vergence: each camera turned inward by A/2 degrees\n"
-    "  --pan-deg L,R       pan of each camera in degrees from straight ahead, positive to the\n"
-    "                      right (the axes cross in front when L > R)\n"
-    "  --axes              where the calibrated cameras' own optical axes come closest\n"
-    "  -o, --out PNG       the picture (default out/geometry.png)\n";
+    "Options (one fixation, in the rectified frame: origin midway between the cameras, z\n"
+    "forward):\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--calib",
+     .value = "FILE",
+     .help = "the calibration file from horopter calibrate"},
+    {.kind = OptionKind::Number,
+     .flag = "--fixation",
+     .value = "D",
+     .min = 0,
+     .max = 1e9,
+     .help = "straight ahead at distance D: the zone reaches exactly D on the axis"},
+    {.kind = OptionKind::Number,
+     .flag = "--vergence-deg",
+     .value = "A",
+     .min = 0,
+     .max = 180,
+     .unit = "deg",
+     .help = "symmetric vergence: each camera turned inward by A/2 degrees"},
+    {.kind = OptionKind::Text,
+     .flag = "--pan-deg",
+     .value = "L,R",
+     .help = "pan of each camera in degrees from straight ahead, positive to the right (the "
+             "axes cross in front when L > R)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--axes",
+     .help = "where the calibrated cameras' own optical axes come closest"},
+    {.kind = OptionKind::Text,
+     .flag = "--out",
+     .alias = "-o",
+     .value = "PNG",
+     .fallback = "out/geometry.png",
+     .help = "the picture"},
+};
 
 double degToRad(double d) {
   return d * std::numbers::pi / 180.0;
 }
 
-Eigen::Vector3d chooseFixation(Args& args, const StereoCalibration& calib,
-                               const RectifiedGeometry& g, std::string& how) {
-  const auto distance = args.optionalDouble("--fixation");
-  const auto vergence = args.optionalDouble("--vergence-deg");
-  const auto pans = args.value("--pan-deg");
-  const bool axes = args.flag("--axes");
-  const int given = (distance ? 1 : 0) + (vergence ? 1 : 0) + (pans ? 1 : 0) + (axes ? 1 : 0);
+// One of the four ways to give the fixation (checked before any work).
+struct FixationChoice {
+  std::optional<double> distance, vergence;
+  std::optional<std::pair<double, double>> pans;
+  std::string pansText;
+  bool axes = false;
+};
+
+FixationChoice parseFixation(const CommandOptions& o) {
+  FixationChoice f;
+  f.distance = o.optionalNumber("--fixation");
+  f.vergence = o.optionalNumber("--vergence-deg");
+  f.axes = o.on("--axes");
+  if (const auto pans = o.optionalText("--pan-deg")) {
+    double l = 0, r = 0;
+    char tail = 0;
+    if (std::sscanf(pans->c_str(), "%lf,%lf%c", &l, &r, &tail) != 2 || !std::isfinite(l) ||
+        !std::isfinite(r))
+      throw UsageError("--pan-deg needs two angles in degrees as L,R (e.g. 3,-3), got '" + *pans +
+                       "'");
+    f.pans = std::pair{l, r};
+    f.pansText = *pans;
+  }
+  const int given =
+      (f.distance ? 1 : 0) + (f.vergence ? 1 : 0) + (f.pans ? 1 : 0) + (f.axes ? 1 : 0);
   if (given != 1)
-    throw Error(
+    throw UsageError(
         "give exactly one of --fixation D, --vergence-deg A, --pan-deg L,R or --axes (got " +
         std::to_string(given) + ")");
+  return f;
+}
+
+Eigen::Vector3d chooseFixation(const FixationChoice& choice, const StereoCalibration& calib,
+                               const RectifiedGeometry& g, std::string& how) {
+  const auto& [distance, vergence, pans, pansText, axes] = choice;
   if (distance) {
     how = "straight ahead at the requested distance";
     return fixationAtDistance(g.baseline, *distance);
@@ -61,12 +114,8 @@ Eigen::Vector3d chooseFixation(Args& args, const StereoCalibration& calib,
     return fixationFromVergence(g.baseline, degToRad(*vergence));
   }
   if (pans) {
-    double l = 0, r = 0;
-    char tail = 0;
-    if (std::sscanf(pans->c_str(), "%lf,%lf%c", &l, &r, &tail) != 2)
-      throw Error("--pan-deg needs two angles in degrees as L,R (e.g. 3,-3), got '" + *pans + "'");
-    how = "pan angles " + *pans + " deg";
-    return fixationFromPanAngles(g.baseline, degToRad(l), degToRad(r));
+    how = "pan angles " + pansText + " deg";
+    return fixationFromPanAngles(g.baseline, degToRad(pans->first), degToRad(pans->second));
   }
   how = "closest approach of the calibrated optical axes";
   const auto [left, right] = opticalAxes(calib);
@@ -77,18 +126,21 @@ Eigen::Vector3d chooseFixation(Args& args, const StereoCalibration& calib,
 
 int runGeometry(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp;
+    std::cout << kHelp << commandOptionsHelp(kOptions);
     return 0;
   }
-  const auto calibPath = args.value("--calib");
-  if (!calibPath) throw Error("--calib FILE is required (write one with horopter calibrate)");
-  const StereoCalibration calib = loadStereoCalibration(*calibPath);
+  const CommandOptions o(args, kOptions);
+  args.finish("geometry");
+  const auto calibPath = o.optionalText("--calib");
+  if (!calibPath) throw UsageError("--calib FILE is required (write one with horopter calibrate)");
+  const FixationChoice choice = parseFixation(o);
+  const std::string out = o.text("--out");
+  const StereoCalibration calib = asUsageError([&] { return loadStereoCalibration(*calibPath); });
+  requireWritableFile(out, "--out");
   const RectifiedGeometry g = rectifiedGeometry(calib);
   const int width = calib.imageSize.width;
   std::string how;
-  const Eigen::Vector3d f = chooseFixation(args, calib, g, how);
-  const std::string out = args.stringValue("-o", args.stringValue("--out", "out/geometry.png"));
-  args.finish("geometry");
+  const Eigen::Vector3d f = chooseFixation(choice, calib, g, how);
 
   const ViethMuellerCircle c = viethMuellerCircle(g.baseline, f);
   const ZoneExtent e = zoneExtent(g.baseline, c);
@@ -125,8 +177,6 @@ int runGeometry(Args& args) {
       "%.4f .. %s px over the %d columns\n",
       table[static_cast<std::size_t>(centre)] / 16.0, *lo / 16.0, highest, width);
 
-  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
   writeImageFile(out, drawZoneTopDown(g, width, c), "figure");
   std::printf("wrote %s\n", out.c_str());
   return 0;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/hardware/dynamixel_head.hpp"
@@ -34,17 +35,80 @@ const char* kHeadHelp =
     "positive looks down, vergence = total angle between the optical axes) and prints the\n"
     "measured angles until they arrive. Without --pan/--tilt/--vergence: prints the\n"
     "measured angles once. Ctrl-C halts the head where it is.\n\n"
-    "  --port DEV          serial device, e.g. /dev/ttyUSB0\n"
-    "  --sim               a simulated device on a pseudo-terminal instead of --port\n"
-    "  --protocol P        dynamixel (Protocol 2.0, X series; default) or ptu (FLIR ASCII)\n"
-    "  --baud N            default 57600 (dynamixel) or 9600 (ptu)\n"
-    "  --ids P,T[,L,R]     DYNAMIXEL IDs of pan, tilt and left/right vergence, all different\n"
-    "                      (default 1,2; dynamixel only: a PTU has no IDs)\n"
-    "  --pan R --tilt R --vergence R   target angles in radians (vergence: dynamixel with 4 IDs)\n"
-    "  --speed R           rad/s per axis (default 0.5, at most 1.0)\n"
-    "  --tolerance R       arrived when every axis is within R rad (default 0.003)\n"
-    "  --timeout S         give up after S seconds (default 10; exit code 1)\n"
-    "  --json              one JSON object per printed reading\n";
+    "Options:\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--port",
+     .value = "DEV",
+     .help = "serial device, e.g. /dev/ttyUSB0"},
+    {.kind = OptionKind::Switch,
+     .flag = "--sim",
+     .help = "a simulated device on a pseudo-terminal instead of --port"},
+    {.kind = OptionKind::Choice,
+     .flag = "--protocol",
+     .value = "P",
+     .fallback = "dynamixel",
+     .choices = "dynamixel,ptu",
+     .help = "DYNAMIXEL Protocol 2.0 (X series) or FLIR PTU (ASCII)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--baud",
+     .value = "N",
+     .min = 300,
+     .max = 10000000,
+     .help = "baud rate (default 57600 for dynamixel, 9600 for ptu)"},
+    {.kind = OptionKind::Text,
+     .flag = "--ids",
+     .value = "P,T[,L,R]",
+     .help = "DYNAMIXEL IDs of pan, tilt and left/right vergence, all different (default 1,2; "
+             "dynamixel only: a PTU has no IDs)"},
+    {.kind = OptionKind::Number,
+     .flag = "--pan",
+     .value = "R",
+     .min = -6.3,
+     .max = 6.3,
+     .unit = "rad",
+     .help = "target pan angle"},
+    {.kind = OptionKind::Number,
+     .flag = "--tilt",
+     .value = "R",
+     .min = -6.3,
+     .max = 6.3,
+     .unit = "rad",
+     .help = "target tilt angle"},
+    {.kind = OptionKind::Number,
+     .flag = "--vergence",
+     .value = "R",
+     .min = -6.3,
+     .max = 6.3,
+     .unit = "rad",
+     .help = "target vergence (dynamixel with 4 IDs)"},
+    {.kind = OptionKind::Number,
+     .flag = "--speed",
+     .value = "R",
+     .min = 0,
+     .max = 1,
+     .unit = "rad/s",
+     .fallback = "0.5",
+     .help = "speed per axis, above 0"},
+    {.kind = OptionKind::Number,
+     .flag = "--tolerance",
+     .value = "R",
+     .min = 0,
+     .max = 1,
+     .unit = "rad",
+     .fallback = "0.003",
+     .help = "arrived when every axis is within R, above 0"},
+    {.kind = OptionKind::Number,
+     .flag = "--timeout",
+     .value = "S",
+     .min = 0,
+     .max = 3600,
+     .unit = "s",
+     .fallback = "10",
+     .help = "give up after S seconds (exit code 1), above 0"},
+    {.kind = OptionKind::Switch, .flag = "--json", .help = "one JSON object per printed reading"},
+};
 
 std::vector<int> parseIds(const std::string& text) {
   std::vector<int> ids;
@@ -57,15 +121,16 @@ std::vector<int> parseIds(const std::string& text) {
       if (used != item.size() || id < 0 || id > 252) throw std::invalid_argument(item);
       ids.push_back(id);
     } catch (const std::exception&) {
-      throw Error("--ids: '" + item + "' is not a DYNAMIXEL ID (0..252)");
+      throw UsageError("--ids: '" + item + "' is not a DYNAMIXEL ID (0..252)");
     }
     if (std::count(ids.begin(), ids.end(), ids.back()) > 1)
-      throw Error("--ids: ID " + std::to_string(ids.back()) +
-                  " is given twice (pan, tilt and each vergence axis need a servo of their own)");
+      throw UsageError(
+          "--ids: ID " + std::to_string(ids.back()) +
+          " is given twice (pan, tilt and each vergence axis need a servo of their own)");
   }
   if (ids.size() != 2 && ids.size() != 4)
-    throw Error("--ids takes 2 IDs (pan,tilt) or 4 (pan,tilt,left,right), got " +
-                std::to_string(ids.size()));
+    throw UsageError("--ids takes 2 IDs (pan,tilt) or 4 (pan,tilt,left,right), got " +
+                     std::to_string(ids.size()));
   return ids;
 }
 
@@ -89,32 +154,32 @@ void print(const hw::HeadMeasurement& m, double t, bool json) {
 
 int runHead(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHeadHelp;
+    std::cout << kHeadHelp << commandOptionsHelp(kOptions);
     return 0;
   }
-  const bool sim = args.flag("--sim");
-  const auto port = args.value("--port");
-  const std::string protocol = args.stringValue("--protocol", "dynamixel");
-  if (protocol != "dynamixel" && protocol != "ptu")
-    throw Error("--protocol must be dynamixel or ptu, got '" + protocol + "'");
-  const int baud = args.intValue("--baud", protocol == "ptu" ? 9600 : 57600);
-  const auto idsText = args.value("--ids");
-  if (idsText && protocol == "ptu")
-    throw Error("--ids is for --protocol dynamixel: a FLIR PTU has no servo IDs");
-  const std::vector<int> ids = parseIds(idsText.value_or("1,2"));
-  const auto pan = args.optionalDouble("--pan");
-  const auto tilt = args.optionalDouble("--tilt");
-  const auto vergence = args.optionalDouble("--vergence");
-  const double speed = args.doubleValue("--speed", 0.5);
-  const double tolerance = args.doubleValue("--tolerance", 0.003);
-  const double timeout = args.doubleValue("--timeout", 10);
-  const bool json = args.flag("--json");
+  const CommandOptions opts(args, kOptions);
   args.finish("head");
-  if (sim == port.has_value()) throw Error("give exactly one of --port DEV or --sim");
-  if (!(speed > 0 && speed <= 1.0)) throw Error("--speed must be in (0, 1] rad/s");
-  if (!(tolerance > 0) || !(timeout > 0)) throw Error("--tolerance and --timeout must be > 0");
+  const bool sim = opts.on("--sim");
+  const auto port = opts.optionalText("--port");
+  const std::string protocol = opts.text("--protocol");
+  const int baud =
+      static_cast<int>(opts.optionalInteger("--baud").value_or(protocol == "ptu" ? 9600 : 57600));
+  const auto idsText = opts.optionalText("--ids");
+  if (idsText && protocol == "ptu")
+    throw UsageError("--ids is for --protocol dynamixel: a FLIR PTU has no servo IDs");
+  const std::vector<int> ids = parseIds(idsText.value_or("1,2"));
+  const auto pan = opts.optionalNumber("--pan");
+  const auto tilt = opts.optionalNumber("--tilt");
+  const auto vergence = opts.optionalNumber("--vergence");
+  const double speed = opts.number("--speed");
+  const double tolerance = opts.number("--tolerance");
+  const double timeout = opts.number("--timeout");
+  const bool json = opts.on("--json");
+  if (sim == port.has_value()) throw UsageError("give exactly one of --port DEV or --sim");
+  if (!(speed > 0)) throw UsageError("--speed must be in (0, 1] rad/s");
+  if (!(tolerance > 0) || !(timeout > 0)) throw UsageError("--tolerance and --timeout must be > 0");
   if (vergence && (protocol == "ptu" || ids.size() != 4))
-    throw Error("--vergence needs a DYNAMIXEL head with 4 IDs (--ids pan,tilt,left,right)");
+    throw UsageError("--vergence needs a DYNAMIXEL head with 4 IDs (--ids pan,tilt,left,right)");
 
   std::unique_ptr<hw::SimDynamixelBus> simBus;
   std::unique_ptr<hw::SimPtu> simPtu;

@@ -9,6 +9,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/stereo_eval.hpp"
@@ -17,6 +18,7 @@
 #include "horopter/vision/opencl_frontend.hpp"
 #include "horopter/vision/opencv.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "report_format.hpp"
 
 namespace horopter::cli {
@@ -39,13 +41,44 @@ const char* kHelp =
     "built-in synthetic scene, rendered before timing starts (rendering is not timed).\n"
     "The mask uses a constant threshold (the middle of the search range): its cost does\n"
     "not depend on the values.\n\n"
-    "Options:\n"
-    "  --backend LIST   backends to profile, comma-separated (default auto)\n"
-    "  --frames N       timed frames per backend, 1..10000 (default 50)\n"
-    "  --warmup N       untimed frames first (program builds, caches), 0..1000 (default 5)\n"
-    "  --size WxH       synthetic scene size (default 640x480)\n"
-    "  --seed S         synthetic scene seed (default 1)\n"
-    "  --json           one JSON object on stdout instead of the tables\n\n";
+    "Options:\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "LIST",
+     .fallback = "auto",
+     .help = "backends to profile, comma-separated; every name is checked before the first runs"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "N",
+     .min = 1,
+     .max = 10000,
+     .fallback = "50",
+     .help = "timed frames per backend"},
+    {.kind = OptionKind::Integer,
+     .flag = "--warmup",
+     .value = "N",
+     .min = 0,
+     .max = 1000,
+     .fallback = "5",
+     .help = "untimed frames first (program builds, caches)"},
+    {.kind = OptionKind::Text,
+     .flag = "--size",
+     .value = "WxH",
+     .fallback = "640x480",
+     .help = "synthetic scene size, 16x16..8192x8192"},
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 2000000000,
+     .fallback = "1",
+     .help = "synthetic scene seed"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "one JSON object on stdout instead of the tables"},
+};
 
 struct StageStats {
   std::string name;
@@ -91,7 +124,7 @@ std::vector<std::string> splitList(const std::string& list) {
   std::string item;
   while (std::getline(ss, item, ','))
     if (!item.empty()) out.push_back(item);
-  if (out.empty()) throw Error("--backend needs at least one backend name");
+  if (out.empty()) throw UsageError("--backend needs at least one backend name");
   return out;
 }
 
@@ -214,27 +247,34 @@ cv::Size parseSize(const std::string& text) {
 
 int runProfile(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp << stereoFlagsHelp(StereoParams{}, MedianParams{});
+    std::cout << kHelp << commandOptionsHelp(kOptions) << "\n"
+              << stereoFlagsHelp(StereoParams{}, MedianParams{});
     return 0;
   }
-  const std::vector<std::string> backends = splitList(args.stringValue("--backend", "auto"));
-  const int frames = args.intValue("--frames", 50);
-  const int warmup = args.intValue("--warmup", 5);
-  const cv::Size size = parseSize(args.stringValue("--size", "640x480"));
-  const int seed = args.intValue("--seed", 1);
-  const bool asJson = args.flag("--json");
+  const CommandOptions o(args, kOptions);
+  const std::vector<std::string> backends = splitList(o.text("--backend"));
+  const int frames = static_cast<int>(o.integer("--frames"));
+  const int warmup = static_cast<int>(o.integer("--warmup"));
+  const cv::Size size = parseSize(o.text("--size"));
+  const int seed = static_cast<int>(o.integer("--seed"));
+  const bool asJson = o.on("--json");
   const StereoParams stereo = parseStereoFlags(args, StereoParams{});
   const MedianParams medianParams = parseMedianFlags(args, MedianParams{});
   const int threads = parseThreads(args);
   const std::vector<std::string> files = args.positionals();
   args.finish("profile");
-  if (frames < 1 || frames > 10000) throw Error("--frames must be within 1..10000");
-  if (warmup < 0 || warmup > 1000) throw Error("--warmup must be within 0..1000");
-  if (seed < 0) throw Error("--seed must not be negative");
   if (!files.empty() && files.size() != 2)
-    throw Error(
+    throw UsageError(
         "give a rectified pair as two image paths (LEFT RIGHT), or none for the "
         "synthetic scene");
+  if (files.size() == 2) {
+    requireFile(files[0], "left image");
+    requireFile(files[1], "right image");
+  }
+  // Every name before the first backend runs. "opencl" stays: without a
+  // device its front end falls back to the CPU and says so in the table.
+  for (const std::string& name : backends)
+    if (name != "opencl") requireBackend(name);
 
   std::vector<Pair> pairs;
   std::string input;

@@ -6,11 +6,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 #include "io/disparity_images.hpp"
 #include "io/image_files.hpp"
+#include "option_checks.hpp"
 
 namespace horopter::cli {
 
@@ -22,11 +24,28 @@ const char* kHelp =
     "computed once, then remapped per pair) and writes each pair side by side, left then\n"
     "right, with horizontal lines drawn across both every 32 rows and the valid regions (ROIs)\n"
     "outlined: after a good calibration a point lies on the same row in both halves.\n\n"
-    "  --calib FILE     the calibration file\n"
-    "  --left L         a left image, or a glob of them (quote it)\n"
-    "  --right R        the right image(s), paired by the part the wildcards match\n"
-    "  -o, --out DIR    output folder (default out/rectified); writes DIR/<left "
-    "name>_rectified.png\n";
+    "Options:\n";
+
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Text,
+     .flag = "--calib",
+     .value = "FILE",
+     .help = "the calibration file (horopter calibrate)"},
+    {.kind = OptionKind::Text,
+     .flag = "--left",
+     .value = "L",
+     .help = "a left image, or a glob of them (quote it)"},
+    {.kind = OptionKind::Text,
+     .flag = "--right",
+     .value = "R",
+     .help = "the right image(s), paired by the part the wildcards match"},
+    {.kind = OptionKind::Text,
+     .flag = "--out",
+     .alias = "-o",
+     .value = "DIR",
+     .fallback = "out/rectified",
+     .help = "output folder; writes DIR/<left name>_rectified.png"},
+};
 
 cv::Mat readColour(const std::string& path) {
   cv::Mat image = readImage(path, cv::IMREAD_COLOR);
@@ -38,23 +57,25 @@ cv::Mat readColour(const std::string& path) {
 
 int runRectify(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp;
+    std::cout << kHelp << commandOptionsHelp(kOptions);
     return 0;
   }
-  const auto calibPath = args.value("--calib");
-  const auto left = args.value("--left");
-  const auto right = args.value("--right");
-  const std::string outDir = args.stringValue("-o", args.stringValue("--out", "out/rectified"));
+  const CommandOptions o(args, kOptions);
   args.finish("rectify");
-  if (!calibPath) throw Error("--calib FILE is required (write one with horopter calibrate)");
-  if (!left || !right) throw Error("--left and --right images are required: see --help");
+  const auto calibPath = o.optionalText("--calib");
+  const auto left = o.optionalText("--left");
+  const auto right = o.optionalText("--right");
+  const std::string outDir = o.text("--out");
+  if (!calibPath) throw UsageError("--calib FILE is required (write one with horopter calibrate)");
+  if (!left || !right) throw UsageError("--left and --right images are required: see --help");
+  const StereoCalibration calibration =
+      asUsageError([&] { return loadStereoCalibration(*calibPath); });
+  const PairedFiles files = asUsageError([&] { return pairImageFiles(*left, *right); });
+  requireWritableFolder(outDir, "--out");
 
-  const StereoCalibration calibration = loadStereoCalibration(*calibPath);
   StereoRectifier stage(calibration);
-  const PairedFiles files = pairImageFiles(*left, *right);
   for (const std::string& f : files.unpaired)
     std::cerr << "horopter: " << f << " has no partner image: left out\n";
-  std::filesystem::create_directories(outDir);
   for (const ImagePairFiles& p : files.pairs) {
     stage.rectify(readColour(p.left), readColour(p.right));
     cv::Mat sideBySide;

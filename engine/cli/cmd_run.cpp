@@ -16,9 +16,9 @@
 #include <thread>
 #include <vector>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "display_probe.hpp"
-
 #include "file_output.hpp"
 #include "horopter/app/pipeline_builder.hpp"
 #include "horopter/app/robot_stage.hpp"
@@ -29,6 +29,7 @@
 #include "horopter/sim/synthetic_source.hpp"
 #include "io/disparity_images.hpp"
 #include "json_text.hpp"
+#include "option_checks.hpp"
 #include "run_annotation.hpp"
 #include "video_recorder.hpp"
 
@@ -75,60 +76,167 @@ const char* kRunHelpStart =
     "movement's posterior, decision and action, and with --robot the robot's telemetry),\n"
     "still_*.png and summary.json (and telemetry.jsonl with --robot). With no options: 300\n"
     "frames of the built-in synthetic scene. Ctrl-C stops capture and finishes the frames\n"
-    "in flight; with --robot it first latches the base's emergency stop.\n\n"
-    "Source:\n"
-    "  --source S         synthetic (default), dir:PATH, video:LEFT,RIGHT,\n"
-    "                     camera:/dev/videoA,/dev/videoB, sbs:/dev/videoN (side by side)\n"
-    "  --frames N         stop after N frames (synthetic default 300; others: the whole input)\n"
-    "  --seed S           the synthetic scene's seed (default 1)\n"
-    "  --size WxH         synthetic scene or camera size (default 640x480 / driver's)\n"
-    "  --fps F            camera rate (default the driver's)\n"
-    "  --max-skew-ms T    two cameras: most time between paired frames (default 15)\n"
-    "Rectification and zone (sources other than synthetic, which knows its rig):\n"
-    "  --calib FILE            rectify with this calibration (horopter calibrate); the zone\n"
-    "                          then comes from its geometry and --fixation\n"
-    "  --fixation M            with --calib: fixation distance straight ahead, in the\n"
-    "                          calibration's unit (default 1.5)\n"
-    "  --fixation-disparity D  without --calib (the source is rectified already): disparity\n"
-    "                          (px) of the fixation point on the centre column (default: the\n"
-    "                          middle of the search range)\n"
-    "  --focal-px F            without --calib: focal length (default: image width)\n"
-    "Detection, tracking, head control:\n"
-    "  --detect SCOPE     region (inside the horopter, default), full (the whole image) or off\n";
+    "in flight; with --robot it first latches the base's emergency stop.\n\n";
 
-// After the election's flags (its option table).
-const char* kRunHelpEnd =
-    "  --head-formula F   atan2 (3-D head point, default) or paper (tan = u / (d lambda f))\n"
-    "  --no-head-control  synthetic scene: the head stays still (default: closed loop, a\n"
-    "                     command from frame N acts at frame N + 3)\n"
-    "Movement and robot:\n"
-    "  --model FILE       movement model (horopter train; default: the default model, trained\n"
-    "                     in-process in a few seconds)\n"
-    "  --no-movement      no movement analysis (LMA, classifier, behaviour)\n"
-    "  --robot R          none (default) or sim: the real DYNAMIXEL head and Segway RMP\n"
-    "                     drivers on simulated devices (a pty and an in-process CAN bus)\n"
-    "                     receive the head commands and the movement's base velocities;\n"
-    "                     out/telemetry.jsonl logs commands, measured angles and odometry\n"
-    "Scheduling:\n"
-    "  --backend B        scalar, avx2, opencl..., auto (default auto)\n"
-    "  --threads N        threads of the front end's pool (default: all cores with one frame\n"
-    "                     in flight, all but one with more)\n"
-    "  --in-flight K      frames in flight, 1..64 (default 3); offline, a frame counts from\n"
-    "                     the start of its capture (1: one frame at a time; 3: frame N + 2\n"
-    "                     is captured while N + 1 and N are in the stages; with more than\n"
-    "                     one, the synthetic scene renders on the capture thread alone)\n"
-    "  --live             live mode: capture never waits, stale frames are dropped\n"
-    "                     (default for cameras; offline, every frame in order, otherwise)\n"
-    "  --until STAGE      run only up to rectify, disparity or mask (for profiling; no\n"
-    "                     annotation or video)\n"
-    "Output:\n"
-    "  -o, --out DIR      output folder (default out)\n"
-    "  --trace FILE       Chrome trace events (open in Perfetto or chrome://tracing)\n"
-    "  --json             print the summary as one JSON object on stdout\n"
-    "  --display          show the annotated frames in a window (needs a display)\n"
-    "  --no-video         do not write run.avi\n"
-    "  --video-scale N    run.avi at 1/N of the view's width and height, 1..8 (default 1);\n"
-    "                     the video is encoded on its own thread, the stills stay full size\n\n";
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Heading, .flag = "Source"},
+    {.kind = OptionKind::Text,
+     .flag = "--source",
+     .value = "S",
+     .fallback = "synthetic",
+     .help = "synthetic, dir:PATH, video:LEFT,RIGHT, camera:/dev/videoA,/dev/videoB, "
+             "sbs:/dev/videoN (side by side)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--frames",
+     .value = "N",
+     .min = 1,
+     .max = 1000000000,
+     .help = "stop after N frames (default: synthetic 300; others the whole input)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 1000000000,
+     .fallback = "1",
+     .help = "the synthetic scene's seed"},
+    {.kind = OptionKind::Text,
+     .flag = "--size",
+     .value = "WxH",
+     .help = "synthetic scene or camera size, 16x16..16384x16384 (default 640x480 / the "
+             "driver's)"},
+    {.kind = OptionKind::Number,
+     .flag = "--fps",
+     .value = "F",
+     .min = 0,
+     .max = 1000,
+     .unit = "frames/s",
+     .fallback = "0",
+     .help = "camera rate (0: the driver's)"},
+    {.kind = OptionKind::Number,
+     .flag = "--max-skew-ms",
+     .value = "T",
+     .min = 0,
+     .max = 10000,
+     .unit = "ms",
+     .fallback = "15",
+     .help = "two cameras: most time between paired frames"},
+    {.kind = OptionKind::Heading,
+     .flag = "Rectification and zone (sources other than synthetic, which knows its rig)"},
+    {.kind = OptionKind::Text,
+     .flag = "--calib",
+     .value = "FILE",
+     .help = "rectify with this calibration (horopter calibrate); the zone then comes from its "
+             "geometry and --fixation"},
+    {.kind = OptionKind::Number,
+     .flag = "--fixation",
+     .value = "M",
+     .min = 1e-6,
+     .max = 1e6,
+     .fallback = "1.5",
+     .help = "with --calib: fixation distance straight ahead, in the calibration's unit"},
+    {.kind = OptionKind::Number,
+     .flag = "--fixation-disparity",
+     .value = "D",
+     .min = 1e-3,
+     .max = 1e6,
+     .unit = "px",
+     .help = "without --calib (the source is rectified already): disparity of the fixation "
+             "point on the centre column (default: the middle of the search range)"},
+    {.kind = OptionKind::Number,
+     .flag = "--focal-px",
+     .value = "F",
+     .min = 1e-3,
+     .max = 1e7,
+     .unit = "px",
+     .help = "without --calib: focal length (default: the image width)"},
+    {.kind = OptionKind::Heading, .flag = "Detection, tracking, head control"},
+    {.kind = OptionKind::Choice,
+     .flag = "--detect",
+     .value = "SCOPE",
+     .fallback = "region",
+     .choices = "region,full,off",
+     .help = "where faces and hands are detected: inside the horopter, the whole image, or "
+             "nowhere"},
+    {.kind = OptionKind::Choice,
+     .flag = "--head-formula",
+     .value = "F",
+     .fallback = "atan2",
+     .choices = "atan2,paper",
+     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
+             "lambda f)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--no-head-control",
+     .help = "synthetic scene: the head stays still (default: closed loop, a command from "
+             "frame N acts at frame N + 3)"},
+    {.kind = OptionKind::Heading, .flag = "Movement and robot"},
+    {.kind = OptionKind::Text,
+     .flag = "--model",
+     .value = "FILE",
+     .help = "movement model (horopter train; default: the default model, trained in-process "
+             "in a few seconds)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--no-movement",
+     .help = "no movement analysis (LMA, classifier, behaviour)"},
+    {.kind = OptionKind::Choice,
+     .flag = "--robot",
+     .value = "R",
+     .fallback = "none",
+     .choices = "none,sim",
+     .help = "with sim, the real DYNAMIXEL head and Segway RMP drivers on simulated devices (a "
+             "pty and an in-process CAN bus) receive the head commands and the movement's base "
+             "velocities, and out/telemetry.jsonl logs commands, measured angles and odometry "
+             "(real robots: horopter head / horopter base)"},
+    {.kind = OptionKind::Heading, .flag = "Scheduling"},
+    {.kind = OptionKind::Text,
+     .flag = "--backend",
+     .value = "B",
+     .fallback = "auto",
+     .help = "scalar, avx2, opencl..., auto"},
+    {.kind = OptionKind::Integer,
+     .flag = "--in-flight",
+     .value = "K",
+     .min = 1,
+     .max = 64,
+     .fallback = "3",
+     .help = "frames in flight; offline, a frame counts from the start of its capture (1: one "
+             "frame at a time; 3: frame N + 2 is captured while N + 1 and N are in the stages; "
+             "with more than one, the synthetic scene renders on the capture thread alone)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--live",
+     .help = "live mode: capture never waits, stale frames are dropped (default for cameras; "
+             "offline, every frame in order, otherwise)"},
+    {.kind = OptionKind::Choice,
+     .flag = "--until",
+     .value = "STAGE",
+     .choices = "rectify,disparity,mask",
+     .help = "run only up to this stage (for profiling; no annotation or video)"},
+    {.kind = OptionKind::Heading, .flag = "Output"},
+    {.kind = OptionKind::Text,
+     .flag = "--out",
+     .alias = "-o",
+     .value = "DIR",
+     .fallback = "out",
+     .help = "output folder"},
+    {.kind = OptionKind::Text,
+     .flag = "--trace",
+     .value = "FILE",
+     .help = "Chrome trace events (open in Perfetto or chrome://tracing)"},
+    {.kind = OptionKind::Switch,
+     .flag = "--json",
+     .help = "print the summary as one JSON object on stdout"},
+    {.kind = OptionKind::Switch,
+     .flag = "--display",
+     .help = "show the annotated frames in a window (needs a display)"},
+    {.kind = OptionKind::Switch, .flag = "--no-video", .help = "do not write run.avi"},
+    {.kind = OptionKind::Integer,
+     .flag = "--video-scale",
+     .value = "N",
+     .min = 1,
+     .max = 8,
+     .fallback = "1",
+     .help = "run.avi at 1/N of the view's width and height; the video is encoded on its own "
+             "thread, the stills stay full size"},
+};
 
 // What `horopter run` does: the pipeline's configuration and the CLI's own
 // choices (output, the model file, the simulated robot).
@@ -148,29 +256,53 @@ struct RunJob {
   std::string robot = "none";
 };
 
+// Checks a --source spec the way openSource() reads it, before any work:
+// the kind, and that the folder, files or devices it names exist.
+void checkSource(const std::string& spec) {
+  if (spec == "synthetic") return;
+  const auto colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon);
+  const std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  // "A,B" -> {A, B}.
+  const auto twoParts = [&] {
+    const auto comma = rest.find(',');
+    if (comma == std::string::npos || comma == 0 || comma + 1 == rest.size() ||
+        rest.find(',', comma + 1) != std::string::npos)
+      throw UsageError("'" + spec + "' needs two comma-separated parts (left,right)");
+    return std::vector<std::string>{rest.substr(0, comma), rest.substr(comma + 1)};
+  };
+  if (kind == "dir" && !rest.empty()) {
+    if (!std::filesystem::is_directory(rest))
+      throw UsageError("image folder '" + rest + "' does not exist (dir:PATH needs a folder)");
+    return;
+  }
+  if (kind == "video") {
+    for (const std::string& f : twoParts())
+      requireFile(f, "video file");
+    return;
+  }
+  if (kind == "camera" || (kind == "sbs" && !rest.empty())) {
+    for (const std::string& d : kind == "sbs" ? std::vector<std::string>{rest} : twoParts())
+      if (!std::filesystem::exists(d))
+        throw UsageError("camera '" + d + "' does not exist: list cameras with `ls /dev/video*`");
+    return;
+  }
+  throw UsageError("unknown source '" + spec +
+                   "': use synthetic, dir:PATH, video:LEFT,RIGHT, camera:LEFTDEV,RIGHTDEV or "
+                   "sbs:DEV");
+}
+
+// Every option, checked before the run starts (the model is trained or
+// loaded after this, the source opened after that).
 RunJob parseRun(Args& args) {
+  const CommandOptions o(args, kOptions);
   RunJob job;
   PipelineConfig& c = job.config;
-  c.source = args.stringValue("--source", c.source);
-  if (auto frames = args.value("--frames")) {
-    job.frames = static_cast<int>(parseInteger(*frames, "--frames", 1, 1000000000));
-    job.framesGiven = true;
-  }
-  job.synthetic.scene.seed = static_cast<std::uint64_t>(args.intValue("--seed", 1));
-  if (auto size = args.value("--size")) {
-    const ImageSize wh = parseImageSize(*size, "--size", {16, 16}, {16384, 16384});
-    c.capture.width = wh.width;
-    c.capture.height = wh.height;
-    job.synthetic.scene.width = c.capture.width;
-    job.synthetic.scene.height = c.capture.height;
-  }
-  c.capture.fps = args.doubleValue("--fps", 0);
-  c.capture.maxSkewMs = args.doubleValue("--max-skew-ms", c.capture.maxSkewMs);
   c.stereo = parseStereoFlags(args, c.stereo);
   c.median = parseMedianFlags(args, c.median);
   c.zoneSearch = parseOptionFlags(args, zoneSearchOptions(), c.zoneSearch);
-  c.backend = args.stringValue("--backend", c.backend);
-  c.inFlight = args.intValue("--in-flight", c.inFlight);
+  c.tracker.election = parseOptionFlags(args, electionOptions(), c.tracker.election);
+  c.inFlight = static_cast<int>(o.integer("--in-flight"));
   // With frames in flight, capture and the other stages keep a core busy
   // with the neighbouring frames, so the front end's pool takes the other
   // cores (a pool as wide as the machine would share a core with them and
@@ -178,53 +310,70 @@ RunJob parseRun(Args& args) {
   // 184-214 frames/s with one thread against 162-202 with two.
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   c.threads = parseThreads(args, c.inFlight > 1 ? std::max(1, cores - 1) : cores);
-  job.liveGiven = c.live = args.flag("--live");
-  job.until = args.stringValue("--until", "");
+  args.finish("run");
+
+  c.source = o.text("--source");
+  if (const auto frames = o.optionalInteger("--frames")) {
+    job.frames = static_cast<int>(*frames);
+    job.framesGiven = true;
+  }
+  job.synthetic.scene.seed = static_cast<std::uint64_t>(o.integer("--seed"));
+  if (const auto size = o.optionalText("--size")) {
+    const ImageSize wh = parseImageSize(*size, "--size", {16, 16}, {16384, 16384});
+    c.capture.width = wh.width;
+    c.capture.height = wh.height;
+    job.synthetic.scene.width = c.capture.width;
+    job.synthetic.scene.height = c.capture.height;
+  }
+  c.capture.fps = o.number("--fps");
+  c.capture.maxSkewMs = o.number("--max-skew-ms");
+  c.backend = o.text("--backend");
+  job.liveGiven = c.live = o.on("--live");
+  job.until = o.text("--until");
   if (job.until == "rectify")
     c.stopAfter = StopAfter::Rectify;
   else if (job.until == "disparity")
     c.stopAfter = StopAfter::Disparity;
   else if (job.until == "mask")
     c.stopAfter = StopAfter::Mask;
-  else if (!job.until.empty())
-    throw Error("--until takes rectify, disparity or mask, got '" + job.until + "'");
-  job.outDir = args.stringValue("-o", args.stringValue("--out", job.outDir));
-  job.trace = args.stringValue("--trace", "");
-  job.json = args.flag("--json");
-  job.display = args.flag("--display");
-  job.video = !args.flag("--no-video");
-  job.videoScale = args.intValue("--video-scale", job.videoScale, 1, 8);
-  c.zone.fixationDisparityPx = args.optionalDouble("--fixation-disparity");
-  c.zone.focalPx = args.optionalDouble("--focal-px");
-  c.zone.calib = args.stringValue("--calib", "");
-  c.zone.fixationDistanceM = args.doubleValue("--fixation", c.zone.fixationDistanceM);
-  const std::string detect = args.stringValue("--detect", "region");
+  job.outDir = o.text("--out");
+  job.trace = o.text("--trace");
+  job.json = o.on("--json");
+  job.display = o.on("--display");
+  job.video = !o.on("--no-video");
+  job.videoScale = static_cast<int>(o.integer("--video-scale"));
+  c.zone.fixationDisparityPx = o.optionalNumber("--fixation-disparity");
+  c.zone.focalPx = o.optionalNumber("--focal-px");
+  c.zone.calib = o.text("--calib");
+  c.zone.fixationDistanceM = o.number("--fixation");
+  const std::string detect = o.text("--detect");
   if (detect == "region")
     c.detection = DetectionScope::HoropterRegion;
   else if (detect == "full")
     c.detection = DetectionScope::FullImage;
-  else if (detect == "off")
-    c.detection.reset();
   else
-    throw Error("--detect takes region, full or off, got '" + detect + "'");
-  c.tracker.election = parseOptionFlags(args, electionOptions(), c.tracker.election);
-  const std::string formula = args.stringValue("--head-formula", "atan2");
-  if (formula != "atan2" && formula != "paper")
-    throw Error("--head-formula takes atan2 or paper, got '" + formula + "'");
-  c.head.formula = formula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
-  c.headControl = !args.flag("--no-head-control");
-  job.model = args.stringValue("--model", "");
-  job.movement = !args.flag("--no-movement");
-  job.robot = args.stringValue("--robot", job.robot);
-  if (job.robot != "none" && job.robot != "sim")
-    throw Error("--robot takes none or sim, got '" + job.robot +
-                "' (real robots: horopter head / horopter base)");
-  if (!(c.zone.fixationDistanceM > 0 && std::isfinite(c.zone.fixationDistanceM)))
-    throw Error("--fixation must be a positive distance");
-  for (const auto& v : {c.zone.fixationDisparityPx, c.zone.focalPx})
-    if (v && !(*v > 0 && std::isfinite(*v)))
-      throw Error("--fixation-disparity and --focal-px must be positive numbers");
-  args.finish("run");
+    c.detection.reset();
+  c.head.formula =
+      o.text("--head-formula") == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
+  c.headControl = !o.on("--no-head-control");
+  job.model = o.text("--model");
+  job.movement = !o.on("--no-movement");
+  job.robot = o.text("--robot");
+
+  checkSource(c.source);
+  if (!c.zone.calib.empty() && c.source == "synthetic")
+    throw UsageError(
+        "--calib rectifies a raw camera pair, but the synthetic scene is rectified "
+        "already: drop --calib, or give --source");
+  if (!c.zone.calib.empty()) requireFile(c.zone.calib, "calibration file");
+  if (!job.model.empty()) requireFile(job.model, "movement model");
+  requireBackend(c.backend);
+  requireWritableFolder(job.outDir, "--out");
+  if (!job.trace.empty()) requireWritableFile(job.trace, "--trace");
+  if (job.display) checkDisplayOpens();
+  if (job.robot == "sim" && !(c.detection && job.until.empty()))
+    throw UsageError("--robot sim needs detection and tracking: drop --detect off / --until");
+
   const bool camera = c.source.rfind("camera:", 0) == 0 || c.source.rfind("sbs:", 0) == 0;
   if (camera && !job.liveGiven) c.live = true;
   job.synthetic.frames = job.frames;
@@ -365,9 +514,11 @@ void printSummary(const RunSummary& s, const RunJob& job, const std::string& bac
 
 int runPipeline(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    const ElectionOptions election;
-    std::cout << kRunHelpStart << optionFlagsHelp(electionOptions(), election) << kRunHelpEnd
-              << stereoFlagsHelp(StereoParams{}, MedianParams{})
+    std::cout << kRunHelpStart << commandOptionsHelp(kOptions)
+              << "Election of the godfather (the person the robot follows):\n"
+              << optionFlagsHelp(electionOptions(), ElectionOptions{}) << "\n"
+              << stereoFlagsHelp(StereoParams{}, MedianParams{},
+                                 "all cores with one frame in flight, all but one with more")
               << "Zone-limited matching (each frame searches only where the zone can be):\n"
               << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{});
     return 0;
@@ -377,14 +528,7 @@ int runPipeline(Args& args) {
   const StopSignals signals;
   RunJob job = parseRun(args);
   PipelineConfig& c = job.config;
-  if (job.display) checkDisplayOpens();
-  if (!c.zone.calib.empty() && c.source == "synthetic")
-    throw Error(
-        "--calib rectifies a raw camera pair, but the synthetic scene is rectified "
-        "already: drop --calib, or give --source");
   const bool detect = c.detection && job.until.empty();
-  if (job.robot == "sim" && !detect)
-    throw Error("--robot sim needs detection and tracking: drop --detect off / --until");
   if (detect && job.movement) {
     if (!job.json)
       std::cerr << "horopter run: movement model " << (job.model.empty() ? "(default)" : job.model)

@@ -3,58 +3,105 @@
 #include <iostream>
 #include <string>
 
+#include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/eval/movement_training.hpp"
 #include "horopter/movement/movement_classifier.hpp"
+#include "option_checks.hpp"
 
 namespace horopter::cli {
 
+namespace {
+
+const char* kHelp =
+    "Usage: horopter train [--seed S] [--sequences N] [-o model.hmm] [options]\n\n"
+    "Learns the Bayesian movement classifier (include/horopter/movement/movement_classifier.hpp)\n"
+    "from N labelled sequences of the synthetic scene's movement generator, without\n"
+    "rendering: the main person's head and hands projected into the left image with\n"
+    "tracking-like noise, varied speed, amplitude, handedness and head pose (seeds S to\n"
+    "S+N-1). Prints the frames per movement and the frame accuracy on 20 sequences of\n"
+    "the tuning range, and writes the model (a versioned text file).\n\n"
+    "Seed ranges: training 1000000.., tuning 2000000.., evaluation below 1000000\n"
+    "(eval-interaction's trials). Commands without --model train the default model\n"
+    "in-process (the defaults below, a few seconds).\n\n"
+    "Options:\n";
+
+// The model's defaults are MovementModelParams's; the ranges are the
+// model's (MovementModel checks them, and the rearm < threshold rule, before
+// training starts).
+constexpr CommandOption kOptions[] = {
+    {.kind = OptionKind::Integer,
+     .flag = "--seed",
+     .value = "S",
+     .min = 0,
+     .max = 2000000000,
+     .fallback = "1000000",
+     .help = "first training seed"},
+    {.kind = OptionKind::Integer,
+     .flag = "--sequences",
+     .value = "N",
+     .min = 1,
+     .max = 100000,
+     .fallback = "300",
+     .help = "sequences, about 12 s each"},
+    {.kind = OptionKind::Text,
+     .flag = "--output",
+     .alias = "-o",
+     .value = "FILE",
+     .fallback = "movement.hmm",
+     .help = "the model file"},
+    {.kind = OptionKind::Number,
+     .flag = "--stay",
+     .value = "P",
+     .min = 0,
+     .max = 1,
+     .fallback = "0.97",
+     .help = "P(movement stays the same from frame to frame), above 0 and below 1"},
+    {.kind = OptionKind::Number,
+     .flag = "--evidence-weight",
+     .value = "W",
+     .min = 0,
+     .max = 1,
+     .fallback = "0.15",
+     .help = "exponent of each frame's likelihood, above 0"},
+    {.kind = OptionKind::Number,
+     .flag = "--threshold",
+     .value = "T",
+     .min = 0.5,
+     .max = 1,
+     .fallback = "0.95",
+     .help = "posterior to decide a movement, above 0.5 and below 1"},
+    {.kind = OptionKind::Number,
+     .flag = "--rearm",
+     .value = "R",
+     .min = 0,
+     .max = 1,
+     .fallback = "0.3",
+     .help = "posterior below which it can be decided again, below --threshold"},
+};
+
+}  // namespace
+
 int runTrain(Args& args) {
-  const MovementModelParams defaults;
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout
-        << "Usage: horopter train [--seed S] [--sequences N] [-o model.hmm] [options]\n\n"
-           "Learns the Bayesian movement classifier "
-           "(include/horopter/movement/movement_classifier.hpp)\n"
-           "from N labelled sequences of the synthetic scene's movement generator, without\n"
-           "rendering: the main person's head and hands projected into the left image with\n"
-           "tracking-like noise, varied speed, amplitude, handedness and head pose (seeds S to\n"
-           "S+N-1). Prints the frames per movement and the frame accuracy on 20 sequences of\n"
-           "the tuning range, and writes the model (a versioned text file).\n\n"
-           "Seed ranges: training 1000000.., tuning 2000000.., evaluation below 1000000\n"
-           "(eval-interaction's trials). Commands without --model train the default model\n"
-           "in-process (the defaults below, a few seconds).\n\n"
-           "Options:\n"
-           "  --seed S               first training seed (default 1000000)\n"
-           "  --sequences N          sequences, about 12 s each (default 300)\n"
-           "  -o, --output FILE      the model file (default movement.hmm)\n"
-           "  --stay P               P(movement stays the same from frame to frame) (default "
-        << defaults.stay
-        << ")\n"
-           "  --evidence-weight W    exponent of each frame's likelihood, (0, 1] (default "
-        << defaults.evidenceWeight
-        << ")\n"
-           "  --threshold T          posterior to decide a movement, (0.5, 1) (default "
-        << defaults.decisionThreshold
-        << ")\n"
-           "  --rearm R              posterior below which it can be decided again (default "
-        << defaults.rearmThreshold << ")\n";
+    std::cout << kHelp << commandOptionsHelp(kOptions);
     return 0;
   }
-  TrainingOptions options;
-  const int seed = args.intValue("--seed", static_cast<int>(kTrainingSeedBase));
-  options.sequences = args.intValue("--sequences", options.sequences);
-  std::string output = args.stringValue("--output", "");
-  if (output.empty()) output = args.stringValue("-o", "movement.hmm");
-  options.params.stay = args.doubleValue("--stay", defaults.stay);
-  options.params.evidenceWeight = args.doubleValue("--evidence-weight", defaults.evidenceWeight);
-  options.params.decisionThreshold = args.doubleValue("--threshold", defaults.decisionThreshold);
-  options.params.rearmThreshold = args.doubleValue("--rearm", defaults.rearmThreshold);
+  const CommandOptions o(args, kOptions);
   args.finish("train");
-  if (seed < 0) throw Error("--seed must be >= 0");
-  if (options.sequences < 1 || options.sequences > 100000)
-    throw Error("--sequences must be within 1..100000");
+  TrainingOptions options;
+  const long long seed = o.integer("--seed");
+  options.sequences = static_cast<int>(o.integer("--sequences"));
+  const std::string output = o.text("--output");
+  options.params.stay = o.number("--stay");
+  options.params.evidenceWeight = o.number("--evidence-weight");
+  options.params.decisionThreshold = o.number("--threshold");
+  options.params.rearmThreshold = o.number("--rearm");
+  // The open ends of the ranges and the rule across them, from the model
+  // itself (an empty model with these parameters), before any training.
+  asUsageError([&] { MovementModel(MovementCounts{}, options.params); });
+  requireWritableFile(output, "--output");
   options.firstSeed = static_cast<std::uint64_t>(seed);
   if (options.firstSeed < kEvaluationSeedLimit)
     std::cerr << "warning: training seeds " << seed << ".." << seed + options.sequences - 1

@@ -5,10 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
-#include <cstring>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <thread>
 

@@ -40,7 +40,9 @@ const char* kUsage =
     "                and print the measured angles\n"
     "  base          drive the Segway RMP base (SocketCAN, USB or --sim) and print odometry\n"
     "  profile       per-stage time of the front end on each backend (OpenCL: device time of\n"
-    "                upload, each kernel, download)\n";
+    "                upload, each kernel, download)\n\n"
+    "Exit status: 0 done; 1 the work failed; 2 a wrong command line (an unknown option, a value\n"
+    "out of range, a missing file): every command checks all its options before it starts.\n";
 
 }  // namespace
 
@@ -79,6 +81,9 @@ int main(int argc, char** argv) {
     if (command == "profile") return runProfile(args);
     if (command == kDisplayProbeCommand) return probeDisplay();
     std::cerr << "horopter: unknown command '" << command << "'\n\n" << kUsage;
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "horopter " << command << ": error: " << e.what() << "\n";
     return 2;
   } catch (const horopter::Error& e) {
     std::cerr << "horopter " << command << ": error: " << e.what() << "\n";

@@ -31,10 +31,10 @@ std::span<const NumberOption<ElectionOptions>> electionOptions() {
 }
 
 GodfatherElection::GodfatherElection(ElectionOptions options) : options_(options) {
+  // electS and releaseS: their table's ranges; candidateGraceS is internal.
   checkRanges(electionOptions(), options);
-  if (!(options.electS >= 0) || !(options.releaseS >= 0) || !(options.candidateGraceS >= 0) ||
-      !std::isfinite(options.electS) || !std::isfinite(options.releaseS))
-    throw Error("godfather election times must be finite and >= 0 seconds");
+  if (!(options.candidateGraceS >= 0) || !std::isfinite(options.candidateGraceS))
+    throw Error("godfather election's candidate grace must be finite and >= 0 seconds");
 }
 
 void GodfatherElection::reset() {

@@ -56,11 +56,13 @@ namespace {
 // The depth a turn is undone at before the head's depth is measured.
 constexpr double kUnknownDepthM = 1.5;
 
+// The table's options (the ones a user tunes) are checked by their ranges;
+// the rest are internal gates, checked here, and not exposed as flags.
 void validate(const TrackerOptions& o) {
   checkRanges(trackerOptions(), o);
-  if (!(o.coastS >= 0) || !(o.coastJumpS >= 0) || !(o.reachFaceWidths > 0) ||
-      !(o.maxHandAreaFaces > o.minHandAreaFaces) || o.minHandAreaFaces < 0)
-    throw Error("tracker coast and coast-jump times must be >= 0 s, reach and hand area > 0");
+  if (!(o.coastS >= 0) || !(o.reachFaceWidths > 0) || !(o.maxHandAreaFaces > o.minHandAreaFaces) ||
+      o.minHandAreaFaces < 0)
+    throw Error("tracker coast time must be >= 0 s, reach and hand area > 0");
   if (!(o.minHandRadiusFaces >= 0) || !(o.crossFaceWidths >= 0) || !(o.solidHandAreaFaces >= 0) ||
       !(o.solidHandRadiusFaces >= 0) || !(o.headBlobFaceWidths >= 0))
     throw Error(
@@ -69,13 +71,12 @@ void validate(const TrackerOptions& o) {
       !(o.smallHandMinAgreement >= 0 && o.smallHandMinAgreement <= 1) ||
       !(o.smallHandAreaFaces >= 0) || !(o.smallHandRadiusFaces >= 0))
     throw Error("tracker stereo agreements must be fractions in [0, 1] and small-hand limits >= 0");
-  if (!(o.blindFollowS >= 0) || !(o.blindBandFaces >= 0) || !(o.blindNearFraction > 0) ||
+  if (!(o.blindBandFaces >= 0) || !(o.blindNearFraction > 0) ||
       !(o.blindValidFraction >= 0 && o.blindValidFraction <= 1) || !(o.blindPatchFaces > 0) ||
-      !(o.blindSearchFaces > 0) || !(o.blindMinScore >= -1 && o.blindMinScore <= 1) ||
-      !(o.maxDisparityPx >= 0))
+      !(o.blindSearchFaces > 0) || !(o.maxDisparityPx >= 0))
     throw Error(
-        "tracker blind following needs times, band and largest disparity >= 0, a near fraction, "
-        "patch and search sizes > 0, a valid fraction in [0, 1] and a score in [-1, 1]");
+        "tracker blind following needs a band and largest disparity >= 0, a near fraction, "
+        "patch and search sizes > 0 and a valid fraction in [0, 1]");
   if (!(o.framesPerSecond > 0) || !std::isfinite(o.framesPerSecond))
     throw Error("tracker framesPerSecond must be positive");
 }

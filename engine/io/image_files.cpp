@@ -18,13 +18,14 @@ namespace {
 
 std::uint32_t bigEndian(std::span<const std::uint8_t> b, std::size_t at, int bytes) {
   std::uint32_t v = 0;
-  for (int i = 0; i < bytes; ++i) v = (v << 8) | b[at + static_cast<std::size_t>(i)];
+  for (int i = 0; i < bytes; ++i)
+    v = (v << 8) | b[at + static_cast<std::size_t>(i)];
   return v;
 }
 
 std::uint32_t littleEndian32(std::span<const std::uint8_t> b, std::size_t at) {
-  return std::uint32_t{b[at]} | (std::uint32_t{b[at + 1]} << 8) |
-         (std::uint32_t{b[at + 2]} << 16) | (std::uint32_t{b[at + 3]} << 24);
+  return std::uint32_t{b[at]} | (std::uint32_t{b[at + 1]} << 8) | (std::uint32_t{b[at + 2]} << 16) |
+         (std::uint32_t{b[at + 3]} << 24);
 }
 
 bool startsWith(std::span<const std::uint8_t> b, const char* magic, std::size_t n) {
@@ -90,7 +91,8 @@ std::optional<cv::Size> pnmSize(std::span<const std::uint8_t> b) {
   for (std::uint64_t& side : sides) {
     while (pos < b.size() && (std::isspace(b[pos]) || b[pos] == '#')) {
       if (b[pos] == '#')
-        while (pos < b.size() && b[pos] != '\n') ++pos;
+        while (pos < b.size() && b[pos] != '\n')
+          ++pos;
       else
         ++pos;
     }

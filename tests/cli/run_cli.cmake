@@ -1,7 +1,8 @@
 # Runs one command-line test of the `horopter` tool and checks its outcome.
 #
 #   cmake [-DREQUIRE=file1|file2] [-DEXPECT_EXIT=0|nonzero|N]
-#         [-DSTDOUT_REGEX=re] [-DSTDERR_REGEX=re] [-DSTDERR_NOT_REGEX=re]
+#         [-DSTDOUT_REGEX=re] [-DSTDOUT_NOT_REGEX=re] [-DSTDERR_REGEX=re]
+#         [-DSTDERR_NOT_REGEX=re]
 #         [-DOUT_DIR=dir -DOUT_FILES=a.png|b.png]
 #         -P run_cli.cmake -- COMMAND [ARG...]
 #
@@ -10,7 +11,7 @@
 #   (SKIP_REGULAR_EXPRESSION), so missing data never passes silently.
 # EXPECT_EXIT: the exit status wanted (default 0); "nonzero" for any failure.
 # STDOUT_REGEX / STDERR_REGEX: regular expressions the outputs must match.
-# STDERR_NOT_REGEX: a regular expression stderr must not match.
+# STDOUT_NOT_REGEX / STDERR_NOT_REGEX: regular expressions the outputs must not match.
 # OUT_DIR: emptied before the run; OUT_FILES must then exist in it, non-empty.
 # Lists use "|" as separator (a ";" would be split by add_test).
 
@@ -67,6 +68,9 @@ elseif(NOT status EQUAL EXPECT_EXIT)
 endif()
 if(DEFINED STDOUT_REGEX AND NOT out MATCHES "${STDOUT_REGEX}")
   string(APPEND problems "\n  stdout does not match: ${STDOUT_REGEX}")
+endif()
+if(DEFINED STDOUT_NOT_REGEX AND out MATCHES "${STDOUT_NOT_REGEX}")
+  string(APPEND problems "\n  stdout matches what it must not: ${STDOUT_NOT_REGEX}")
 endif()
 if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
   string(APPEND problems "\n  stderr does not match: ${STDERR_REGEX}")

@@ -95,5 +95,23 @@ TEST(TuningOptions, TheObjectsCheckTheirTables) {
             std::string::npos);
 }
 
+// The options outside the tables are internal gates (no flag, no Python
+// keyword): their objects still check them.
+TEST(TuningOptions, InternalGatesStayChecked) {
+  ElectionOptions e;
+  e.candidateGraceS = std::nan("");
+  EXPECT_NE(errorOf([&] { GodfatherElection{e}; }).find("candidate grace"), std::string::npos);
+  e = ElectionOptions{};
+  e.electS = std::nan("");
+  EXPECT_NE(errorOf([&] { GodfatherElection{e}; }).find("electS must be within 0..3600 s"),
+            std::string::npos);
+  TrackerOptions t;
+  t.coastS = -1;
+  EXPECT_NE(errorOf([&] { BodyTracker{t}; }).find("tracker coast time"), std::string::npos);
+  t = TrackerOptions{};
+  t.blindValidFraction = 2;
+  EXPECT_NE(errorOf([&] { BodyTracker{t}; }).find("tracker blind following"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace horopter
