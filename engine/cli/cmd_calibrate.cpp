@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "calibration_io.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
@@ -46,9 +47,11 @@ cv::Mat readGrey(const std::string& path) {
 
 int runCalibrate(Args& args) {
   if (args.flag("--help") || args.flag("-h")) {
-    std::cout << kHelp;
+    std::cout << kHelp << kCalibrationConversionHelp;
     return 0;
   }
+  if (const auto in = args.value("--convert")) return runCalibrationConversion(*in, args);
+  const RosOutput rosOut = parseRosOutput(args);
   const auto left = args.value("--left");
   const auto right = args.value("--right");
   const auto board = args.value("--board");
@@ -102,6 +105,7 @@ int runCalibrate(Args& args) {
       "--square)\n",
       g.focalPx, g.cx, g.cy, g.baseline);
   std::printf("wrote %s\n", out.c_str());
+  if (rosOut.dir) writeRosPair(c, *rosOut.dir, rosOut.cameraName);
   return 0;
 }
 

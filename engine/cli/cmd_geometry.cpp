@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 
+#include "calibration_io.hpp"
 #include "commands.hpp"
 #include "geometry/zone_figure.hpp"
 #include "horopter/core/error.hpp"
@@ -28,7 +29,9 @@ const char* kHelp =
     "width at the fixation distance (and nearer), and the disparity thresholds the mask uses;\n"
     "writes a top-down picture: cameras, fields of view, circle, fixation point.\n"
     "Lengths are in the unit of the calibration's --square (metres for --square 0.025).\n\n"
-    "  --calib FILE        the calibration file from horopter calibrate\n"
+    "  --calib PATH        the calibration: horopter calibrate's file, OpenCV's, or ROS\n"
+    "                      camera_info left.yaml (+ right.yaml) (docs/calibration.md)\n"
+    "  --image-size WxH    for a calibration without an image size (stereo_calib's pair)\n"
     "One fixation, in the rectified frame (origin midway between the cameras, z forward):\n"
     "  --fixation D        straight ahead at distance D: the zone reaches exactly D on the axis\n"
     "  --vergence-deg A    symmetric vergence: each camera turned inward by A/2 degrees\n"
@@ -82,7 +85,8 @@ int runGeometry(Args& args) {
   }
   const auto calibPath = args.value("--calib");
   if (!calibPath) throw Error("--calib FILE is required (write one with horopter calibrate)");
-  const StereoCalibration calib = loadStereoCalibration(*calibPath);
+  const StereoCalibration calib =
+      loadCalibrationArg(*calibPath, parseCalibrationImageSize(args).value_or(ImageSize{}));
   const RectifiedGeometry g = rectifiedGeometry(calib);
   const int width = calib.imageSize.width;
   std::string how;

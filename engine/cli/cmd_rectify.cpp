@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "calibration_io.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
@@ -16,12 +17,15 @@ namespace horopter::cli {
 namespace {
 
 const char* kHelp =
-    "Usage: horopter rectify --calib calib.yml --left L --right R [-o DIR]\n\n"
+    "Usage: horopter rectify --calib PATH --left L --right R [-o DIR]\n\n"
     "Rectifies stereo pairs with a calibration from horopter calibrate (undistort-rectify maps\n"
     "computed once, then remapped per pair) and writes each pair side by side, left then\n"
     "right, with horizontal lines drawn across both every 32 rows and the valid regions (ROIs)\n"
     "outlined: after a good calibration a point lies on the same row in both halves.\n\n"
-    "  --calib FILE     the calibration file\n"
+    "  --calib PATH     the calibration: Horopter's file, OpenCV's, ROS camera_info left.yaml\n"
+    "                   (+ right.yaml) or a folder with a pair (docs/calibration.md)\n"
+    "  --image-size WxH for a calibration without an image size (OpenCV's stereo_calib\n"
+    "                   pair); default: the first left image's size\n"
     "  --left L         a left image, or a glob of them (quote it)\n"
     "  --right R        the right image(s), paired by the part the wildcards match\n"
     "  -o, --out DIR    output folder (default out/rectified); writes DIR/<left "
@@ -41,6 +45,7 @@ int runRectify(Args& args) {
     return 0;
   }
   const auto calibPath = args.value("--calib");
+  const std::optional<ImageSize> imageSize = parseCalibrationImageSize(args);
   const auto left = args.value("--left");
   const auto right = args.value("--right");
   const std::string outDir = args.stringValue("-o", args.stringValue("--out", "out/rectified"));
@@ -48,11 +53,18 @@ int runRectify(Args& args) {
   if (!calibPath) throw Error("--calib FILE is required (write one with horopter calibrate)");
   if (!left || !right) throw Error("--left and --right images are required: see --help");
 
-  const StereoCalibration calibration = loadStereoCalibration(*calibPath);
-  StereoRectifier stage(calibration);
   const PairedFiles files = pairImageFiles(*left, *right);
   for (const std::string& f : files.unpaired)
     std::cerr << "horopter: " << f << " has no partner image: left out\n";
+  // A calibration without an image size takes the images' (checked against
+  // the rectifier's size for every pair below).
+  ImageSize size = imageSize.value_or(ImageSize{});
+  if (!imageSize && !files.pairs.empty()) {
+    const cv::Mat first = readColour(files.pairs.front().left);
+    size = {first.cols, first.rows};
+  }
+  const StereoCalibration calibration = loadCalibrationArg(*calibPath, size);
+  StereoRectifier stage(calibration);
   std::filesystem::create_directories(outDir);
   for (const ImagePairFiles& p : files.pairs) {
     stage.rectify(readColour(p.left), readColour(p.right));
