@@ -287,6 +287,8 @@ StereoCalibration loadStereoCalibration(const std::string& requested,
     case Kind::Ros: {
       // The given file is the left one unless it is named as the right one
       // and the partner is to be found.
+      // This file's fields first: its own errors before any about its partner.
+      const detail::RosCameraInfo a = detail::readRosCameraInfo(first);
       const bool givenRight = import.right.empty() &&
                               !detail::swapInName(path, "left", "right").has_value() &&
                               detail::swapInName(path, "right", "left").has_value();
@@ -299,7 +301,6 @@ StereoCalibration loadStereoCalibration(const std::string& requested,
       if (detail::kindOf(second) != Kind::Ros)
         throw Error("calibration file '" + other +
                     "' is not a ROS camera_info file to pair with '" + path + "'");
-      const detail::RosCameraInfo a = detail::readRosCameraInfo(first);
       const detail::RosCameraInfo b = detail::readRosCameraInfo(second);
       c = givenRight ? detail::stereoFromRos(b, a) : detail::stereoFromRos(a, b);
       source = givenRight ? other + "' + '" + path : path + "' + '" + other;
