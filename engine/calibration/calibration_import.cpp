@@ -126,8 +126,10 @@ void checkImageSize(StereoCalibration& c, const CalibrationImport& import,
   if (import.imageSize.empty() || import.imageSize == c.imageSize) return;
   std::ostringstream message;
   message << "calibration '" << source << "' is for " << c.imageSize.width << "x"
-          << c.imageSize.height << " images but the image size given is " << import.imageSize.width
-          << "x" << import.imageSize.height << ": calibrate at the capture resolution";
+          << c.imageSize.height << " images, not " << import.imageSize.width << "x"
+          << import.imageSize.height
+          << " (the size given, or that of the images read): calibrate at the capture "
+             "resolution";
   throw Error(message.str());
 }
 
