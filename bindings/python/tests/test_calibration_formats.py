@@ -2,6 +2,10 @@
 cv2.FileStorage writes it, text made here: cv2 is not needed), ROS
 camera_info pairs (as ROS's camera_calibration writes them), and the way
 back to ROS with write_ros_camera_info."""
+import glob
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -149,3 +153,27 @@ def test_bad_ros_files_name_the_field(opencv_calib, tmp_path):
     _ros_file(tmp_path / "right.yaml", "r", c.K2, c.D2, c.R2, c.P1)
     with pytest.raises(horopter.Error, match="no baseline"):
         horopter.load_calibration(str(tmp_path))
+
+
+VIEWS = "/usr/share/doc/opencv-doc/examples/data"
+
+
+def test_cli_ros_out_matches_python(cli, tmp_path):
+    """`horopter calibrate --ros-out` and write_ros_camera_info write the same files."""
+    if not glob.glob(os.path.join(VIEWS, "left0*.jpg")):
+        pytest.skip(f"opencv-doc's chessboard views are not in {VIEWS} (apt-get install opencv-doc)")
+    subprocess.run([cli, "calibrate", "--left", f"{VIEWS}/left*.jpg", "--right",
+                    f"{VIEWS}/right*.jpg", "--board", "9x6", "--square", "0.025", "-o",
+                    str(tmp_path / "calib.yml"), "--ros-out", str(tmp_path / "cli_ros"),
+                    "--camera-name", "head"], check=True, capture_output=True)
+    calib = horopter.load_calibration(str(tmp_path / "calib.yml"))
+    assert calib.inner_corners == (9, 6) and calib.square_size == 0.025
+    horopter.write_ros_camera_info(calib, str(tmp_path / "left.yaml"),
+                                   str(tmp_path / "right.yaml"), camera_name="head")
+    for side in ("left", "right"):
+        assert (tmp_path / f"{side}.yaml").read_text() == \
+            (tmp_path / "cli_ros" / f"{side}.yaml").read_text()
+    ros = horopter.load_calibration(str(tmp_path / "cli_ros"))
+    np.testing.assert_allclose(ros.T, calib.T, rtol=0, atol=1e-12)
+    assert horopter.rectified_geometry(ros).baseline == pytest.approx(
+        horopter.rectified_geometry(calib).baseline, rel=1e-12)
