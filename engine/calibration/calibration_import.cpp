@@ -103,8 +103,8 @@ std::string partnerOf(const std::string& path, const CalibrationImport& import,
   if (other && fs::exists(*other, ec)) return *other;
   throw Error("calibration file '" + path + "' " + what +
               (other ? " and '" + *other + "' does not exist" : std::string()) +
-              ": give the other file too (Python: right=...; or a folder holding both, named " +
-              from + ".* and " + to + ".*)");
+              ": give the other file too: a folder holding both as " + from + ".yaml and " + to +
+              ".yaml (or .yml), horopter calibrate --convert-right FILE, or Python's right=");
 }
 
 // A folder: left.yaml + right.yaml, or intrinsics.yml + extrinsics.yml

@@ -110,7 +110,8 @@ RosCameraInfo readRosCameraInfo(CalibrationStorage& in) {
   RosCameraInfo info;
   info.source = in.path();
   info.imageSize = {in.integer("image_width"), in.integer("image_height")};
-  info.cameraName = in.has("camera_name") ? in.text("camera_name") : std::string();
+  // Only shown, never required: a name YAML reads as a number is let be.
+  if (in.get("camera_name").isString()) info.cameraName = in.text("camera_name");
   info.K = in.rosMatrix("camera_matrix", 3, 3);
   const cv::Mat d = in.rosMatrix("distortion_coefficients", 1, 0);
   // Older files have no distortion_model: the count tells the model.
@@ -143,6 +144,13 @@ StereoCalibration stereoFromRos(const RosCameraInfo& left, const RosCameraInfo& 
     throw Error(message.str());
   }
   const cv::Vec3d t = t2 - t1;
+  if (cv::norm(t) > 0 && std::abs(t[0]) < std::abs(t[1])) {
+    std::ostringstream message;
+    message << pair << ": the projection matrices place the right camera above or below the "
+            << "left one (t = " << t[0] << ", " << t[1] << ", " << t[2]
+            << "); Horopter needs the cameras side by side (horizontal baseline)";
+    throw Error(message.str());
+  }
   if (cv::norm(t) == 0)
     throw Error(pair +
                 ": the right projection_matrix has Tx = 0, so the files give no baseline (no "

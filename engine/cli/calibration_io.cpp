@@ -43,6 +43,12 @@ RosOutput parseRosOutput(Args& args) {
   return out;
 }
 
+void requireCalibrationPath(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw Error("calibration file '" + path + "' does not exist: run horopter calibrate first");
+}
+
 StereoCalibration loadCalibrationArg(const std::string& path, ImageSize imageSize) {
   CalibrationImport import;
   import.imageSize = {imageSize.width, imageSize.height};

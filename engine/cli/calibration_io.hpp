@@ -15,6 +15,9 @@ namespace horopter::cli {
 // stereo_calib sample's pair); nullopt when absent.
 std::optional<ImageSize> parseCalibrationImageSize(Args& args);
 
+// Throws the loader's "does not exist" error for a PATH that is not there.
+void requireCalibrationPath(const std::string& path);
+
 // Loads --calib's PATH (a file, or a folder with a ROS or stereo_calib
 // pair), with `imageSize` (0x0: none) for formats without one.
 StereoCalibration loadCalibrationArg(const std::string& path, ImageSize imageSize = {});

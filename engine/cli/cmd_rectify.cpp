@@ -53,6 +53,7 @@ int runRectify(Args& args) {
   if (!calibPath) throw Error("--calib FILE is required (write one with horopter calibrate)");
   if (!left || !right) throw Error("--left and --right images are required: see --help");
 
+  requireCalibrationPath(*calibPath);  // before the images, which may be read for its size
   const PairedFiles files = pairImageFiles(*left, *right);
   for (const std::string& f : files.unpaired)
     std::cerr << "horopter: " << f << " has no partner image: left out\n";

@@ -445,6 +445,13 @@ TEST(CalibrationFormats, MalformedRosFilesNameTheField) {
   // Left and right swapped.
   writeRosPair(dir, rig, "right.yaml", "left.yaml");
   expectErrorMentions(errorOf([&] { loadStereoCalibration(dir); }), {"swapped"});
+  // A vertical pair: refused, not divided by a zero Tx.
+  StereoCalibration vertical = rig;
+  vertical.P2 = rig.P1.clone();
+  vertical.P2.at<double>(1, 3) = -60.0;
+  writeRosPair(dir, vertical);
+  expectErrorMentions(errorOf([&] { loadStereoCalibration(dir); }),
+                      {"above or below", "side by side"});
   // Image sizes that disagree.
   writeRosPair(dir, rig);
   writeText(dir + "/right.yaml", rosCameraText("r", {800, 600}, rig.K2, rig.D2, rig.R2, rig.P2));
