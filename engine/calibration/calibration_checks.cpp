@@ -79,10 +79,14 @@ void checkCalibration(const StereoCalibration& c, const std::string& source) {
                 "image_width x image_height",
                 text("is ", image.width, "x", image.height, ", not within 1..", kMaxCalibratedSide,
                      " a side"));
-  check.require(c.board.squareSize > 0 && std::isfinite(c.board.squareSize), "square_size",
-                text("is ", c.board.squareSize, ", not a positive length"));
-  check.require(c.board.innerCorners.width >= 2 && c.board.innerCorners.height >= 2,
-                "board_width x board_height", "must count at least 2x2 inner corners");
+  // An imported calibration knows no board (0x0, square 0): nothing to check.
+  const bool board = c.board.innerCorners != cv::Size() || c.board.squareSize != 0;
+  if (board) {
+    check.require(c.board.squareSize > 0 && std::isfinite(c.board.squareSize), "square_size",
+                  text("is ", c.board.squareSize, ", not a positive length"));
+    check.require(c.board.innerCorners.width >= 2 && c.board.innerCorners.height >= 2,
+                  "board_width x board_height", "must count at least 2x2 inner corners");
+  }
   check.cameraMatrix(c.K1, "K1", image);
   check.cameraMatrix(c.K2, "K2", image);
   check.distortion(c.D1, "D1");
@@ -92,10 +96,16 @@ void checkCalibration(const StereoCalibration& c, const std::string& source) {
   check.rotation(c.R2, "R2");
   check.require(c.T.total() == 3 && c.T.type() == CV_64F, "T", "is not a 3-vector");
   const double baseline = cv::norm(c.T);
-  const double square = c.board.squareSize;
-  check.require(baseline >= 0.01 * square && baseline <= 1e4 * square, "T",
-                text("gives a baseline of ", baseline, " (in the square size's unit, ", square,
-                     "): not a stereo rig"));
+  if (board) {
+    const double square = c.board.squareSize;
+    check.require(baseline >= 0.01 * square && baseline <= 1e4 * square, "T",
+                  text("gives a baseline of ", baseline, " (in the square size's unit, ", square,
+                       "): not a stereo rig"));
+  } else {
+    // No unit to judge the length by: only that there is one.
+    check.require(baseline > 0 && std::isfinite(baseline), "T",
+                  text("gives a baseline of ", baseline, ": not a stereo rig"));
+  }
   check.require(c.P1.rows == 3 && c.P1.cols == 4 && c.P1.at<double>(0, 0) > 0, "P1",
                 "has no positive focal length");
   check.require(c.P2.rows == 3 && c.P2.cols == 4 && c.P2.at<double>(0, 0) > 0, "P2",

@@ -5,6 +5,7 @@
 #include <opencv2/calib3d.hpp>
 #include <string>
 
+#include "calibration/calibration_formats.hpp"
 #include "horopter/core/error.hpp"
 #include "horopter/vision/calibration.hpp"
 
@@ -133,8 +134,8 @@ StereoCalibration calibrateStereo(const BoardDetections& detections, const Board
     c.views.push_back({detections.views[i].name, perView.at<double>(static_cast<int>(i), 0),
                        perView.at<double>(static_cast<int>(i), 1)});
 
-  cv::stereoRectify(c.K1, c.D1, c.K2, c.D2, c.imageSize, c.R, c.T, c.R1, c.R2, c.P1, c.P2, c.Q,
-                    cv::CALIB_ZERO_DISPARITY, options.alpha, c.imageSize, &c.roi1, &c.roi2);
+  // The same rectification as for an imported calibration without one.
+  detail::computeRectification(c, options.alpha);
   c.epipolarError = rectifiedEpipolarError(detections, c);
   boardHomographies(detections, object, c);
   return c;

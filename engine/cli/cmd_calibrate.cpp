@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "calibration_io.hpp"
 #include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
@@ -20,7 +21,8 @@ namespace {
 
 const char* kHelp =
     "Usage: horopter calibrate --left 'DIR/left*.jpg' --right 'DIR/right*.jpg'\n"
-    "                          --board 9x6 --square 0.025 [-o calib.yml] [options]\n\n"
+    "                          --board 9x6 --square 0.025 [-o calib.yml] [options]\n"
+    "   or: horopter calibrate --convert IN --to horopter|ros [-o OUT] [--image-size WxH]\n\n"
     "Calibrates a stereo pair from views of a chessboard seen by both cameras: corners with\n"
     "sub-pixel refinement, intrinsics and distortion per camera, the extrinsics R, T, E and F,\n"
     "rectification (R1, R2, P1, P2, Q, valid ROIs) and the board plane's homography between\n"
@@ -69,7 +71,37 @@ constexpr CommandOption kOptions[] = {
      .alias = "-o",
      .value = "FILE",
      .fallback = "calib.yml",
-     .help = "the calibration file, .yml/.yaml or .xml; its folder is created if missing"},
+     .help = "the calibration file, .yml/.yaml or .xml; its folder is created if missing (with "
+             "--convert --to ros: a folder, default ros)"},
+    {.kind = OptionKind::Heading,
+     .flag = "Calibrations from elsewhere and to ROS (formats: docs/calibration.md)"},
+    {.kind = OptionKind::Text,
+     .flag = "--ros-out",
+     .value = "DIR",
+     .help = "also write DIR/left.yaml and DIR/right.yaml, ROS camera_info files"},
+    {.kind = OptionKind::Text,
+     .flag = "--camera-name",
+     .value = "N",
+     .fallback = "stereo",
+     .help = "camera_name in the ROS files: N/left, N/right"},
+    {.kind = OptionKind::Text,
+     .flag = "--convert",
+     .value = "IN",
+     .help = "instead of calibrating, read the calibration IN and write it with --to; IN: "
+             "Horopter's file, an OpenCV file (K1, D1, K2, D2, R, T), the stereo_calib sample's "
+             "intrinsics.yml (+ extrinsics.yml), a ROS camera_info left.yaml (+ right.yaml), or a "
+             "folder holding a pair"},
+    {.kind = OptionKind::Text,
+     .flag = "--convert-right",
+     .value = "F",
+     .help = "the pair's second file where it is not named like the first (left -> right, "
+             "intrinsics -> extrinsics)"},
+    {.kind = OptionKind::Choice,
+     .flag = "--to",
+     .value = "FORMAT",
+     .choices = "horopter,ros",
+     .help = "with --convert: what to write"},
+    kImageSizeOption,
 };
 
 cv::Mat readGrey(const std::string& path) {
@@ -88,6 +120,10 @@ int runCalibrate(Args& args) {
   // Every option is checked, and the images listed, before any is read.
   const CommandOptions o(args, kOptions);
   args.finish("calibrate");
+  if (const auto in = o.optionalText("--convert")) return runCalibrationConversion(*in, o);
+  for (const char* flag : {"--to", "--convert-right", "--image-size"})
+    if (o.given(flag)) throw UsageError(std::string(flag) + " goes with --convert");
+  const RosOutput rosOut = rosOutput(o);
   const auto left = o.optionalText("--left");
   const auto right = o.optionalText("--right");
   const auto board = o.optionalText("--board");
@@ -138,6 +174,7 @@ int runCalibrate(Args& args) {
       "--square)\n",
       g.focalPx, g.cx, g.cy, g.baseline);
   std::printf("wrote %s\n", out.c_str());
+  if (rosOut.dir) writeRosPair(c, *rosOut.dir, rosOut.cameraName);
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "calibration_io.hpp"
 #include "command_options.hpp"
 #include "commands.hpp"
 #include "geometry/zone_figure.hpp"
@@ -28,15 +29,18 @@ const char* kHelp =
     "circle, the zone's depth range on the head's axis and on each camera's optical axis, its\n"
     "width at the fixation distance (and nearer), and the disparity thresholds the mask uses;\n"
     "writes a top-down picture: cameras, fields of view, circle, fixation point.\n"
-    "Lengths are in the unit of the calibration's --square (metres for --square 0.025).\n\n"
+    "Lengths are in the calibration's unit: that of --square for horopter calibrate (metres\n"
+    "for --square 0.025), metres for ROS camera_info files.\n\n"
     "Options (one fixation, in the rectified frame: origin midway between the cameras, z\n"
     "forward):\n";
 
 constexpr CommandOption kOptions[] = {
     {.kind = OptionKind::Text,
      .flag = "--calib",
-     .value = "FILE",
-     .help = "the calibration file from horopter calibrate"},
+     .value = "PATH",
+     .help = "the calibration: horopter calibrate's file, OpenCV's, or ROS camera_info left.yaml "
+             "(+ right.yaml) (docs/calibration.md)"},
+    kImageSizeOption,
     {.kind = OptionKind::Number,
      .flag = "--fixation",
      .value = "D",
@@ -135,7 +139,9 @@ int runGeometry(Args& args) {
   if (!calibPath) throw UsageError("--calib FILE is required (write one with horopter calibrate)");
   const FixationChoice choice = parseFixation(o);
   const std::string out = o.text("--out");
-  const StereoCalibration calib = asUsageError([&] { return loadStereoCalibration(*calibPath); });
+  const ImageSize imageSize = calibrationImageSize(o).value_or(ImageSize{});
+  const StereoCalibration calib =
+      asUsageError([&] { return loadCalibrationArg(*calibPath, imageSize); });
   requireWritableFile(out, "--out");
   const RectifiedGeometry g = rectifiedGeometry(calib);
   const int width = calib.imageSize.width;

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "calibration/image_pairs.hpp"
+#include "calibration_io.hpp"
 #include "command_options.hpp"
 #include "commands.hpp"
 #include "horopter/core/error.hpp"
@@ -29,8 +30,10 @@ const char* kHelp =
 constexpr CommandOption kOptions[] = {
     {.kind = OptionKind::Text,
      .flag = "--calib",
-     .value = "FILE",
-     .help = "the calibration file (horopter calibrate)"},
+     .value = "PATH",
+     .help = "the calibration: Horopter's file, OpenCV's, ROS camera_info left.yaml (+ "
+             "right.yaml) or a folder with a pair (docs/calibration.md)"},
+    kImageSizeOption,
     {.kind = OptionKind::Text,
      .flag = "--left",
      .value = "L",
@@ -68,14 +71,22 @@ int runRectify(Args& args) {
   const std::string outDir = o.text("--out");
   if (!calibPath) throw UsageError("--calib FILE is required (write one with horopter calibrate)");
   if (!left || !right) throw UsageError("--left and --right images are required: see --help");
-  const StereoCalibration calibration =
-      asUsageError([&] { return loadStereoCalibration(*calibPath); });
+  const std::optional<ImageSize> imageSize = calibrationImageSize(o);
+  asUsageError([&] { requireCalibrationPath(*calibPath); });  // before the images
   const PairedFiles files = asUsageError([&] { return pairImageFiles(*left, *right); });
   requireWritableFolder(outDir, "--out");
-
-  StereoRectifier stage(calibration);
   for (const std::string& f : files.unpaired)
     std::cerr << "horopter: " << f << " has no partner image: left out\n";
+  // A calibration without an image size takes the images' (checked against
+  // the rectifier's size for every pair below).
+  ImageSize size = imageSize.value_or(ImageSize{});
+  if (!imageSize && !files.pairs.empty()) {
+    const cv::Mat first = readColour(files.pairs.front().left);
+    size = {first.cols, first.rows};
+  }
+  const StereoCalibration calibration =
+      asUsageError([&] { return loadCalibrationArg(*calibPath, size); });
+  StereoRectifier stage(calibration);
   for (const ImagePairFiles& p : files.pairs) {
     stage.rectify(readColour(p.left), readColour(p.right));
     cv::Mat sideBySide;

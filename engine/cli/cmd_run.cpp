@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "calibration_io.hpp"
 #include "command_options.hpp"
 #include "commands.hpp"
 #include "display_probe.hpp"
@@ -124,9 +125,10 @@ constexpr CommandOption kOptions[] = {
      .flag = "Rectification and zone (sources other than synthetic, which knows its rig)"},
     {.kind = OptionKind::Text,
      .flag = "--calib",
-     .value = "FILE",
-     .help = "rectify with this calibration (horopter calibrate); the zone then comes from its "
-             "geometry and --fixation"},
+     .value = "PATH",
+     .help = "rectify with this calibration (horopter calibrate's file, OpenCV's, or a ROS "
+             "camera_info pair: docs/calibration.md); the zone then comes from its geometry and "
+             "--fixation"},
     {.kind = OptionKind::Number,
      .flag = "--fixation",
      .value = "M",
@@ -365,7 +367,7 @@ RunJob parseRun(Args& args) {
     throw UsageError(
         "--calib rectifies a raw camera pair, but the synthetic scene is rectified "
         "already: drop --calib, or give --source");
-  if (!c.zone.calib.empty()) requireFile(c.zone.calib, "calibration file");
+  if (!c.zone.calib.empty()) asUsageError([&] { requireCalibrationPath(c.zone.calib); });
   if (!job.model.empty()) requireFile(job.model, "movement model");
   requireBackend(c.backend);
   requireWritableFolder(job.outDir, "--out");

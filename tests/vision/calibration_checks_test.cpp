@@ -81,6 +81,24 @@ TEST(CalibrationChecks, TheBaselineAndTheBoardMustBePlausible) {
   expectRefused([](StereoCalibration& c) { c.board.innerCorners = {1, 6}; }, "board_width");
 }
 
+TEST(CalibrationChecks, AnImportedCalibrationNeedsNoBoard) {
+  // No board (0x0, square 0): the board checks are skipped, and the baseline
+  // only has to exist (no square to judge its length by).
+  StereoCalibration imported = sane();
+  imported.board = {};
+  imported.T = (cv::Mat_<double>(3, 1) << -120.0, 0, 0);  // millimetres, say
+  EXPECT_NO_THROW(checkCalibration(imported, "calib.yml"));
+  expectRefused(
+      [](StereoCalibration& c) {
+        c.board = {};
+        c.T = cv::Mat::zeros(3, 1, CV_64F);
+      },
+      "T");
+  // Half a board is not "no board".
+  expectRefused([](StereoCalibration& c) { c.board.innerCorners = {}; }, "board_width");
+  expectRefused([](StereoCalibration& c) { c.board.squareSize = 0; }, "square_size");
+}
+
 TEST(CalibrationChecks, RoisAndTheImageSizeMustFit) {
   expectRefused([](StereoCalibration& c) { c.roi1 = {600, 0, 100, 10}; }, "roi1");
   expectRefused([](StereoCalibration& c) { c.roi2 = {-1, 0, 10, 10}; }, "roi2");

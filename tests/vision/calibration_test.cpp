@@ -3,6 +3,7 @@
 // once per test binary, plus the failure paths and the calibration file.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <opencv2/core/persistence.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -217,6 +219,69 @@ TEST_F(OpenCVViews, FileRoundTripsThroughFileStorage) {
   fs["P2"] >> p2;
   EXPECT_EQ(cv::norm(p2, c.P2, cv::NORM_INF), 0.0);
   std::remove(path.c_str());
+}
+
+// Mean |y_left - y_right| of the detected corners after rectification
+// with `c` (independent of calibrateStereo's own figure).
+double epipolarErrorWith(const BoardDetections& d, const StereoCalibration& c) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (const BoardView& v : d.views) {
+    std::vector<cv::Point2f> l, r;
+    cv::undistortPoints(v.left, l, c.K1, c.D1, c.R1, c.P1);
+    cv::undistortPoints(v.right, r, c.K2, c.D2, c.R2, c.P2);
+    for (std::size_t i = 0; i < l.size(); ++i)
+      sum += std::abs(l[i].y - r[i].y);
+    n += l.size();
+  }
+  return sum / static_cast<double>(n);
+}
+
+// The real calibration through the formats of other tools: an OpenCV file
+// as a cv2 user saves stereoCalibrate's output (K1..T and the image size,
+// no rectification), and a ROS camera_info pair. Both must rectify as the
+// original does.
+TEST_F(OpenCVViews, OpenCvAndRosFilesOfTheRealCalibrationRectifyAlike) {
+  const StereoCalibration& c = *calibration_;
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "horopter_real_formats";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  {
+    cv::FileStorage fs((dir / "stereo.yml").string(), cv::FileStorage::WRITE);
+    fs << "image_width" << c.imageSize.width << "image_height" << c.imageSize.height;
+    fs << "K1" << c.K1 << "D1" << c.D1 << "K2" << c.K2 << "D2" << c.D2 << "R" << c.R << "T" << c.T;
+  }
+  const StereoCalibration opencv = loadStereoCalibration((dir / "stereo.yml").string());
+  // The same cv::stereoRectify on the same numbers.
+  for (const auto& [name, a, b] :
+       {std::tuple{"P1", c.P1, opencv.P1}, std::tuple{"P2", c.P2, opencv.P2},
+        std::tuple{"R1", c.R1, opencv.R1}, std::tuple{"Q", c.Q, opencv.Q}})
+    EXPECT_LE(cv::norm(a, b, cv::NORM_INF), 1e-9 * (1 + cv::norm(a))) << name;
+  EXPECT_EQ(opencv.roi1, c.roi1);
+  EXPECT_NEAR(epipolarErrorWith(*detections_, opencv), c.epipolarError, 1e-6);
+
+  writeRosCameraInfo(c, (dir / "left.yaml").string(), (dir / "right.yaml").string());
+  const StereoCalibration ros = loadStereoCalibration(dir.string());
+  // R and T recovered from the rectification: R = R2^T R1, T = R2^T t.
+  EXPECT_LE(cv::norm(ros.R, c.R, cv::NORM_INF), 1e-12);
+  EXPECT_LE(cv::norm(ros.T, c.T, cv::NORM_INF), 1e-12 * cv::norm(c.T));
+  EXPECT_LE(cv::norm(ros.Q, c.Q, cv::NORM_INF), 1e-9 * cv::norm(c.Q));
+  EXPECT_EQ(epipolarErrorWith(*detections_, ros), c.epipolarError);
+
+  // The imported calibration's rectifier aligns the board's rows.
+  StereoRectifier stage(ros);
+  stage.rectify(cv::imread(dir_ + "/left01.jpg", cv::IMREAD_GRAYSCALE),
+                cv::imread(dir_ + "/right01.jpg", cv::IMREAD_GRAYSCALE));
+  const std::vector<cv::Point2f> cl = findBoardCorners(stage.left(), kBoard);
+  const std::vector<cv::Point2f> cr = findBoardCorners(stage.right(), kBoard);
+  ASSERT_EQ(cl.size(), 54u);
+  ASSERT_EQ(cr.size(), 54u);
+  double sum = 0;
+  for (std::size_t i = 0; i < cl.size(); ++i)
+    sum += std::abs(cl[i].y - cr[i].y);
+  EXPECT_LT(sum / cl.size(), 1.0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_F(OpenCVViews, MalformedFilesNameTheField) {

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,24 @@ StereoCalibration calibrate(const py::sequence& lefts, const py::sequence& right
   return calibrateStereo(detectBoards(pairs, board.innerCorners), board, options);
 }
 
+// loadStereoCalibration with Python's optional arguments.
+StereoCalibration loadCalibration(const std::string& path, const std::optional<std::string>& right,
+                                  const std::optional<py::sequence>& imageSize, double alpha) {
+  CalibrationImport import;
+  if (right) import.right = *right;
+  if (imageSize) {
+    if (imageSize->size() != 2)
+      throw Error("image_size takes (width, height) in pixels, e.g. (640, 480)");
+    import.imageSize = {(*imageSize)[0].cast<int>(), (*imageSize)[1].cast<int>()};
+    if (import.imageSize.width < 1 || import.imageSize.height < 1)
+      throw Error("image_size must be positive, got (" + std::to_string(import.imageSize.width) +
+                  ", " + std::to_string(import.imageSize.height) + ")");
+  }
+  import.alpha = alpha;
+  py::gil_scoped_release release;
+  return loadStereoCalibration(path, import);
+}
+
 py::tuple rect(const cv::Rect& r) {
   return py::make_tuple(r.x, r.y, r.width, r.height);
 }
@@ -135,6 +154,24 @@ void bindCalibration(py::module_& m) {
       .def_property_readonly("Q", [](const StereoCalibration& c) { return matrix(c.Q); })
       .def_property_readonly("roi1", [](const StereoCalibration& c) { return rect(c.roi1); })
       .def_property_readonly("roi2", [](const StereoCalibration& c) { return rect(c.roi2); })
+      .def_readonly("format", &StereoCalibration::format,
+                    "Where it came from: 'horopter' (calibrate), or the imported format: "
+                    "'opencv', 'opencv stereo_calib', 'ros camera_info'")
+      .def_property_readonly(
+          "inner_corners",
+          [](const StereoCalibration& c) -> py::object {
+            if (c.board.innerCorners.area() == 0) return py::none();
+            return py::make_tuple(c.board.innerCorners.width, c.board.innerCorners.height);
+          },
+          "The board's inner corners (per row, per column); None for an imported calibration")
+      .def_property_readonly(
+          "square_size",
+          [](const StereoCalibration& c) -> py::object {
+            if (!(c.board.squareSize > 0)) return py::none();
+            return py::float_(c.board.squareSize);
+          },
+          "The board's square size (the unit of every length); None for an imported "
+          "calibration")
       .def_readonly("alpha", &StereoCalibration::alpha)
       .def_readonly("rms", &StereoCalibration::rms)
       .def_readonly("rms_left", &StereoCalibration::rmsLeft)
@@ -166,9 +203,25 @@ void bindCalibration(py::module_& m) {
         "lefts[i], rights[i]); square_size sets the unit of every length (metres give "
         "metres). Pairs where the board is not found in both images are skipped and named "
         "in .skipped; fewer than min_views usable pairs is a horopter.Error");
-  m.def("load_calibration", &loadStereoCalibration, py::arg("path"),
-        "Reads a calibration file (OpenCV YAML/XML, as `horopter calibrate` writes)");
-  m.def("save_calibration", &saveStereoCalibration, py::arg("calibration"), py::arg("path"));
+  m.def("load_calibration", &loadCalibration, py::arg("path"), py::arg("right") = py::none(),
+        py::arg("image_size") = py::none(), py::arg("alpha") = 0.0,
+        "Reads a stereo calibration, its format recognised by content: Horopter's file (as "
+        "`horopter calibrate` writes it); an OpenCV FileStorage file with K1 (or M1), D1, K2, "
+        "D2, R, T and the image size, with or without R1, R2, P1, P2, Q; OpenCV's stereo_calib "
+        "sample pair intrinsics.yml + extrinsics.yml; a ROS camera_info pair (left and right "
+        "YAML). path may be a folder holding left.yaml + right.yaml or intrinsics.yml + "
+        "extrinsics.yml. right: the pair's second file where it is not found by name "
+        "(left -> right, intrinsics -> extrinsics). image_size: (width, height) for files "
+        "without one (must agree with files that have one). alpha: stereoRectify's scaling "
+        "where the file has no rectification (0 = only valid pixels, 1 = all pixels). "
+        "A bad or incomplete file is a horopter.Error naming the file and the field");
+  m.def("save_calibration", &saveStereoCalibration, py::arg("calibration"), py::arg("path"),
+        "Writes the calibration in Horopter's format (OpenCV YAML or XML by the extension)");
+  m.def("write_ros_camera_info", &writeRosCameraInfo, py::arg("calibration"), py::arg("left_path"),
+        py::arg("right_path"), py::arg("camera_name") = "stereo",
+        "Writes one ROS camera_info YAML file per camera, as ROS's camera_calibration writes "
+        "them (camera_name CAMERA_NAME/left and /right; plumb_bob or rational_polynomial "
+        "distortion), every number exact; load_calibration reads the pair back");
   m.def("rectified_geometry", &rectifiedGeometry, py::arg("calibration"),
         "The RectifiedGeometry of a calibration (f, cx, cy from P1; baseline from P2)");
 

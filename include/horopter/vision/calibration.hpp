@@ -71,14 +71,19 @@ struct HOROPTER_API ViewError {
 
 struct HOROPTER_API StereoCalibration {
   cv::Size imageSize;
-  BoardSpec board;
+  BoardSpec board;  // 0x0 and 0 where the calibration was imported (no board known)
+  // Where it came from: "horopter" (calibrateStereo), else the imported
+  // format: "opencv" (a stereoCalibrate-style file), "opencv stereo_calib"
+  // (intrinsics.yml + extrinsics.yml), "ros camera_info" (a left/right pair).
+  std::string format = "horopter";
   cv::Mat K1, D1, K2, D2;     // intrinsics (3x3) and distortion (1xN) per camera
   cv::Mat R, T, E, F;         // extrinsics (3x3, 3x1), essential and fundamental matrices
   cv::Mat R1, R2, P1, P2, Q;  // rectification (3x3, 3x3, 3x4, 3x4, 4x4)
   cv::Rect roi1, roi2;        // valid pixels of each rectified image
   double alpha = 0.0;
 
-  // Quality figures, from the views the calibration used.
+  // Quality figures, from the views the calibration used (0 and empty for
+  // an imported calibration).
   double rms = 0;                    // stereo RMS reprojection error, px
   double rmsLeft = 0, rmsRight = 0;  // per-camera RMS of the monocular calibrations, px
   double epipolarError = 0;      // mean |y_left - y_right| of the corners after rectification, px
@@ -101,11 +106,45 @@ HOROPTER_API StereoCalibration calibrateStereo(const BoardDetections& detections
                                                const BoardSpec& board,
                                                const CalibrationOptions& options = {});
 
-// OpenCV FileStorage (YAML or XML by the file's extension). load throws
-// horopter::Error naming the file and the missing or malformed field.
+// Horopter's calibration file: OpenCV FileStorage (YAML or XML by the
+// file's extension). The board and the quality figures are written when the
+// calibration has them.
 HOROPTER_API void saveStereoCalibration(const StereoCalibration& calibration,
                                         const std::string& path);
-HOROPTER_API StereoCalibration loadStereoCalibration(const std::string& path);
+
+// What loadStereoCalibration needs beyond the file for formats that lack it.
+struct HOROPTER_API CalibrationImport {
+  // The second file of a pair: the right camera's ROS camera_info, or the
+  // stereo_calib sample's extrinsics.yml. Empty: found by name next to the
+  // first (left.yaml -> right.yaml, intrinsics.yml -> extrinsics.yml).
+  std::string right;
+  // The image size where the files give none (the stereo_calib pair); where
+  // they give one, the two must agree. Empty: the files' own.
+  cv::Size imageSize;
+  // stereoRectify's free scaling where the files give no R1, R2, P1, P2, Q.
+  double alpha = 0.0;
+};
+
+// Reads a stereo calibration, its format recognised by content (see
+// docs/calibration.md): Horopter's file; an OpenCV file with K1 (or M1), D1,
+// K2, D2, R, T and the image size, with or without R1, R2, P1, P2, Q; the
+// stereo_calib sample's intrinsics.yml + extrinsics.yml; a ROS camera_info
+// pair (left and right YAML). `path` may also be a folder holding left.yaml
+// and right.yaml, or intrinsics.yml and extrinsics.yml. Missing
+// rectification is computed by cv::stereoRectify as calibrateStereo does;
+// every calibration is checked for meaning. Throws horopter::Error naming
+// the file and the missing or malformed field.
+HOROPTER_API StereoCalibration loadStereoCalibration(const std::string& path,
+                                                     const CalibrationImport& import = {});
+
+// Writes one ROS camera_info YAML file per camera, as ROS's
+// camera_calibration writes them (camera_name NAME/left and NAME/right;
+// plumb_bob for 4 or 5 distortion coefficients, rational_polynomial for 8,
+// or for 12 or 14 whose coefficients past the eighth are 0; others cannot be
+// written and throw). Every number is written to round trip exactly.
+HOROPTER_API void writeRosCameraInfo(const StereoCalibration& calibration,
+                                     const std::string& leftPath, const std::string& rightPath,
+                                     const std::string& cameraName = "stereo");
 
 // The rectified pair's geometry: f = P1(0,0), cx = P1(0,2), cy = P1(1,2),
 // baseline = -P2(0,3) / P2(0,0) (in the board's unit). Throws for a vertical
