@@ -134,7 +134,9 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
   o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n";
   for (const IntOption<StereoParams>& option : stereoOptions())
     optionHelp(o, option, p);
-  o << "  --pre-filter-type T      xsobel or none (default " << toString(p.preFilterType) << ")\n";
+  o << "  --pre-filter-type T      normalized (StereoBM's PREFILTER_NORMALIZED_RESPONSE, window "
+       "--pre-filter-size), xsobel or none (default "
+    << toString(p.preFilterType) << ")\n";
   for (const IntOption<MedianParams>& option : medianOptions())
     optionHelp(o, option, m);
   o << "  --threads N              threads for the front end's stripes, 1..256 (default: all "

@@ -70,22 +70,22 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   timings_ = {};
 
   auto start = Clock::now();
-  const bool xsobel = params.preFilterType == PreFilterType::XSobel;
+  const bool filter = params.preFilterType != PreFilterType::None;
   const bool wantTexture = params.textureThreshold > 0;
   ConstImageView matchLeft = left;
   ConstImageView matchRight = right;
   const int height = left.height;
-  if (xsobel) {
+  if (filter) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, params.preFilterCap, leftFiltered_.view(),
-                      wantTexture ? texture_.view() : ImageView{}, *backend_, rows);
-      prefilterXSobel(right, params.preFilterCap, rightFiltered_.view(), {}, *backend_, rows);
+      prefilter(left, params, leftFiltered_.view(), wantTexture ? texture_.view() : ImageView{},
+                *backend_, rows);
+      prefilter(right, params, rightFiltered_.view(), {}, *backend_, rows);
     });
     matchLeft = leftFiltered_.view();
     matchRight = rightFiltered_.view();
   } else if (wantTexture) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, params.preFilterCap, {}, texture_.view(), *backend_, rows);
+      prefilter(left, params, {}, texture_.view(), *backend_, rows);
     });
   }
   timings_.prefilter = msSince(start);
