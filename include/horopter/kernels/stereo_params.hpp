@@ -64,6 +64,21 @@ inline std::int16_t invalidDisparity(const StereoParams& p) {
   return static_cast<std::int16_t>((p.minDisparity - 1) * kDisparityScale);
 }
 
+// cv::StereoBM::create(numDisparities, blockSize)'s settings, exactly as
+// OpenCV 4's StereoBMParams sets them (the defaults of StereoBM, stated here
+// once for C++, Python's horopter.StereoBM_create and the agreement test):
+//   numDisparities: as given, 0 (or negative) meaning 64; blockSize: as given
+//   (OpenCV's default 21); minDisparity 0; preFilterType XSobel (StereoBM's
+//   default, PREFILTER_XSOBEL; NormalizedResponse is its other type);
+//   preFilterSize 9; preFilterCap 31; textureThreshold 10; uniquenessRatio 15;
+//   speckleWindowSize 0 and speckleRange 0 (speckle filter off);
+//   disp12MaxDiff -1 (left-right check off).
+// Horopter's own StereoParams{} differ (64 disparities, block 9, the
+// left-right check at 1 px and the speckle filter at 100 px / 32 on): they
+// are the real-time front end's tuning, not StereoBM's. Not validated here
+// (as cv::StereoBM::create, which checks at compute time): validate() does.
+HOROPTER_API StereoParams stereoBMDefaults(int numDisparities = 0, int blockSize = 21);
+
 // Throws horopter::Error naming the first bad parameter and its allowed range.
 HOROPTER_API void validate(const StereoParams& p);
 
