@@ -111,8 +111,7 @@ ImageSize parseImageSize(const std::string& text, const std::string& option, Ima
 }
 
 int parseThreads(Args& args, int fallback) {
-  if (fallback < 1) fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return args.intValue("--threads", fallback, 1, 256);
+  return resolveThreads(args.intValue("--threads", fallback, 0, 256));
 }
 
 namespace {
@@ -139,8 +138,9 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m) {
     << toString(p.preFilterType) << ")\n";
   for (const IntOption<MedianParams>& option : medianOptions())
     optionHelp(o, option, m);
-  o << "  --threads N              threads for the front end's stripes, 1..256 (default: all "
-    << std::max(1u, std::thread::hardware_concurrency()) << ")\n";
+  o << "  --threads N              threads for the front end's stripes, 1..256, 0: all (default: "
+       "all, "
+    << resolveThreads(FrontendDefaults::threads) << ")\n";
   return o.str();
 }
 

@@ -57,7 +57,7 @@ int runEvalStereo(Args& args) {
   const std::optional<double> scaleGiven = args.optionalDouble("--gt-scale");
   const StereoParams stereo = parseStereoFlags(args, StereoParams{});
   const MedianParams median = parseMedianFlags(args, MedianParams{});
-  const std::string backendName = args.stringValue("--backend", "auto");
+  const std::string backendName = args.stringValue("--backend", FrontendDefaults::backend);
   const std::string peer = args.stringValue("--peer", "");
   EvalOptions options;
   options.timedRuns = args.intValue("--runs", 3);

@@ -217,7 +217,8 @@ int runProfile(Args& args) {
     std::cout << kHelp << stereoFlagsHelp(StereoParams{}, MedianParams{});
     return 0;
   }
-  const std::vector<std::string> backends = splitList(args.stringValue("--backend", "auto"));
+  const std::vector<std::string> backends =
+      splitList(args.stringValue("--backend", FrontendDefaults::backend));
   const int frames = args.intValue("--frames", 50);
   const int warmup = args.intValue("--warmup", 5);
   const cv::Size size = parseSize(args.stringValue("--size", "640x480"));

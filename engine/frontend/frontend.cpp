@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
+#include <thread>
 
 #include "horopter/core/error.hpp"
 #include "horopter/kernels/kernels.hpp"
@@ -19,12 +21,23 @@ double msSince(Clock::time_point start) {
 
 }  // namespace
 
+int resolveThreads(int threads) {
+  if (threads == 0) {
+    const unsigned hardware = std::thread::hardware_concurrency();
+    return static_cast<int>(std::clamp(hardware, 1u, 256u));
+  }
+  if (threads < 1 || threads > 256)
+    throw Error("thread count must be within 1..256, or 0 for every hardware thread, got " +
+                std::to_string(threads));
+  return threads;
+}
+
 StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
                                const Backend& backend, int threads)
     : stereo_(stereo),
       median_(median),
       backend_(&backend),
-      pool_(std::make_unique<ThreadPool>(threads)) {
+      pool_(std::make_unique<ThreadPool>(resolveThreads(threads))) {
   validate(stereo_);
   validate(median_);
 }

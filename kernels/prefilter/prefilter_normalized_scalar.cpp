@@ -63,7 +63,9 @@ void prefilterNormalized(const ConstImageView& src, int cap, int size, const Ima
     const auto* below = src.row<std::uint8_t>(clampTo(y + 1, height));
     auto* outFiltered = filtered.empty() ? nullptr : filtered.row<std::uint8_t>(y);
     auto* outTexture = texture.empty() ? nullptr : texture.row<std::uint8_t>(y);
-    const auto column = [&](int x) { return columnSum[static_cast<std::size_t>(clampTo(x, width))]; };
+    const auto column = [&](int x) {
+      return columnSum[static_cast<std::size_t>(clampTo(x, width))];
+    };
     int sum = 0;
     for (int dx = -r; dx <= r; ++dx)
       sum += column(dx);

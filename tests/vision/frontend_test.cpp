@@ -40,6 +40,11 @@ Chain runKernels(const ConstImageView& left, const ConstImageView& right, const 
     prefilterXSobel(right, p.preFilterCap, rf.view(), {});
     matchLeft = lf.view();
     matchRight = rf.view();
+  } else if (p.preFilterType == PreFilterType::NormalizedResponse) {
+    prefilterNormalized(left, p.preFilterCap, p.preFilterSize, lf.view(), tex.view());
+    prefilterNormalized(right, p.preFilterCap, p.preFilterSize, rf.view(), {});
+    matchLeft = lf.view();
+    matchRight = rf.view();
   } else {
     prefilterXSobel(left, p.preFilterCap, {}, tex.view());
   }
@@ -101,6 +106,10 @@ std::vector<Setting> settings() {
   s.push_back({"range -8..23, median 5", shifted, MedianParams{}});
   shifted.minDisparity = 3;
   s.push_back({"range 3..34, median 3", shifted, m3});
+  StereoParams normalized = stereoBMDefaults(32, 15);
+  normalized.preFilterType = PreFilterType::NormalizedResponse;
+  normalized.preFilterSize = 7;
+  s.push_back({"StereoBM's defaults, normalized response of size 7", normalized, off});
   return s;
 }
 
@@ -116,7 +125,9 @@ TEST(Frontend, ChainEqualsKernelsOneByOne) {
     EXPECT_EQ(&out, &frontend.disparity());
     EXPECT_EQ(frontend.stereoParams().numDisparities, s.p.numDisparities);
     EXPECT_EQ(frontend.medianParams().kernelSize, s.m.kernelSize);
-    EXPECT_EQ(&frontend.backend(), &scalarBackend());
+    // The defaults are FrontendDefaults': the auto backend, every hardware thread.
+    EXPECT_EQ(&frontend.backend(), &findBackend(FrontendDefaults::backend));
+    EXPECT_EQ(frontend.threads(), resolveThreads(FrontendDefaults::threads));
     const FrontendTimings& t = frontend.timings();
     for (double ms : {t.prefilter, t.match, t.cleanup, t.median, t.mask})
       EXPECT_GE(ms, 0);

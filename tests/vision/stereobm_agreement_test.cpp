@@ -104,11 +104,10 @@ void checkPair(const PairCase& c) {
   StereoParams p = stereoBMDefaults(c.numDisparities);
   p.preFilterType = c.type;
   const Agreement a = compareWithStereoBM(left, right, p);
-  std::cout << c.name << " (" << toString(c.type) << "): " << a.bothValid
-            << " valid in both, " << a.bothValidDiffer << " of them differ ("
-            << a.roundedUpByOpenCv << " by +1/16 px, " << a.otherwise
-            << " otherwise); only Horopter "
-            << a.onlyOurs << ", only StereoBM " << a.onlyOpenCv << "\n";
+  std::cout << c.name << " (" << toString(c.type) << "): " << a.bothValid << " valid in both, "
+            << a.bothValidDiffer << " of them differ (" << a.roundedUpByOpenCv << " by +1/16 px, "
+            << a.otherwise << " otherwise); only Horopter " << a.onlyOurs << ", only StereoBM "
+            << a.onlyOpenCv << "\n";
   EXPECT_GT(a.bothValid, left.total() / 4) << c.name;
   // Every pixel that differs does so by the rounding, apart from the few
   // explained above.
