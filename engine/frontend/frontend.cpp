@@ -46,6 +46,11 @@ StereoFrontend::~StereoFrontend() = default;
 StereoFrontend::StereoFrontend(StereoFrontend&&) noexcept = default;
 StereoFrontend& StereoFrontend::operator=(StereoFrontend&&) noexcept = default;
 
+void StereoFrontend::setStereoParams(const StereoParams& stereo) {
+  validate(stereo);
+  stereo_ = stereo;
+}
+
 int StereoFrontend::threads() const {
   return pool_->threads();
 }

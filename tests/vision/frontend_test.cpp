@@ -146,6 +146,32 @@ void replaceValue(TestImage& map, std::int16_t from, std::int16_t to) {
 
 // Zone-limited matching: a search range runs the chain over that range, and
 // invalid pixels carry the configured range's marker.
+// setStereoParams: the next frame runs with the new parameters; a bad set
+// throws naming the parameter and leaves the old one in place.
+TEST(Frontend, SetStereoParamsTakesEffectOrKeepsTheOldOnes) {
+  const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 30, 5}, 31);
+  StereoParams a;
+  StereoParams b = a;
+  b.numDisparities = 32;
+  b.preFilterType = PreFilterType::NormalizedResponse;
+  StereoFrontend frontend(a, MedianParams{}, scalarBackend(), 1);
+  StereoFrontend wantB(b, MedianParams{}, scalarBackend(), 1);
+  frontend.setStereoParams(b);
+  frontend.computeDisparity(pair.left.view(), pair.right.view());
+  wantB.computeDisparity(pair.left.view(), pair.right.view());
+  EXPECT_TRUE(sameImage(wantB.disparity().view(), frontend.disparity().view()));
+  StereoParams bad = b;
+  bad.preFilterSize = 4;
+  try {
+    frontend.setStereoParams(bad);
+    ADD_FAILURE() << "an even preFilterSize was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("preFilterSize"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(frontend.stereoParams().preFilterSize, b.preFilterSize);
+  EXPECT_EQ(frontend.stereoParams().numDisparities, 32);
+}
+
 TEST(Frontend, SearchRangeRunsTheChainOverThatRange) {
   const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 40, 12}, 37);
   const StereoParams p;  // 0..63

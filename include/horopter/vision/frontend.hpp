@@ -80,6 +80,9 @@ class HOROPTER_API StereoFrontend {
   const Image& segmented() const { return segmented_; }
   const FrontendTimings& timings() const { return timings_; }
   const StereoParams& stereoParams() const { return stereo_; }
+  // Replaces the stereo parameters for the next frame; validated first (on a
+  // bad value this throws horopter::Error and keeps the old ones).
+  void setStereoParams(const StereoParams& stereo);
   const MedianParams& medianParams() const { return median_; }
   SearchRange lastRange() const { return lastRange_; }  // the last frame's search range
   const Backend& backend() const { return *backend_; }
