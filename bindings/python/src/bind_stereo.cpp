@@ -159,7 +159,8 @@ StereoMatcher* makeMatcher(const py::args& args, const py::kwargs& kwargs) {
   int threads = FrontendDefaults::threads;
   // Positional: (numDisparities, blockSize) as cv2.StereoBM_create, or the
   // older (params, median, backend, threads).
-  const bool paramsFirst = args.size() > 0 && py::isinstance<StereoParams>(args[0]);
+  const bool paramsFirst =
+      args.size() > 0 && (py::isinstance<StereoParams>(args[0]) || args[0].is_none());
   const std::size_t most = paramsFirst ? 4 : 2;
   if (args.size() > most)
     throw py::type_error(
@@ -168,7 +169,7 @@ StereoMatcher* makeMatcher(const py::args& args, const py::kwargs& kwargs) {
         "), got " + std::to_string(args.size()));
   py::kwargs fields;
   if (paramsFirst) {
-    stereo = args[0].cast<StereoParams>();
+    if (!args[0].is_none()) stereo = args[0].cast<StereoParams>();
     if (args.size() > 1 && !args[1].is_none()) median = args[1].cast<MedianParams>();
     if (args.size() > 2) backend = args[2].cast<std::string>();
     if (args.size() > 3) threads = args[3].cast<int>();

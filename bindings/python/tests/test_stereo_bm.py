@@ -72,6 +72,8 @@ def test_positional_num_disparities_and_block_size():
     params = horopter.StereoParams(numDisparities=48)
     m = horopter.StereoMatcher(params, horopter.MedianParams(kernelSize=3), backend="scalar")
     assert m.getNumDisparities() == 48 and m.median.kernelSize == 3
+    m = horopter.StereoMatcher(None, None, "scalar", 1)
+    assert (m.getNumDisparities(), m.backend, m.threads) == (64, "scalar", 1)
 
 
 @pytest.mark.parametrize("name", sorted(OTHER_VALUES))
