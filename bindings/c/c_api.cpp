@@ -176,7 +176,8 @@ horopter_status horopter_matcher_create(const horopter_stereo_params* params, co
     horopter::StereoParams s;
     horopter::MedianParams m;
     paramsOf(*params, s, m);
-    const horopter::Backend& b = horopter::findBackend(backend ? backend : "auto");
+    const horopter::Backend& b =
+        horopter::findBackend(backend ? backend : horopter::FrontendDefaults::backend);
     *matcher = new horopter_matcher{horopter::StereoFrontend(s, m, b, threads)};
   });
 }

@@ -127,8 +127,7 @@ ImageSize parseImageSize(const std::string& text, const std::string& option, Ima
 }
 
 int parseThreads(Args& args, int fallback) {
-  if (fallback < 1) fallback = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return args.intValue("--threads", fallback, 1, 256);
+  return resolveThreads(args.intValue("--threads", fallback, 0, 256));
 }
 
 namespace {
@@ -151,13 +150,14 @@ std::string stereoFlagsHelp(const StereoParams& p, const MedianParams& m,
   o << "Stereo parameters (the names of cv::StereoBM; disparities are int16 in 1/16 px):\n";
   for (const IntOption<StereoParams>& option : stereoOptions())
     optionHelp(o, option, p);
-  o << "  --pre-filter-type T      xsobel or none (default " << toString(p.preFilterType) << ")\n";
+  o << "  --pre-filter-type T      normalized (StereoBM's PREFILTER_NORMALIZED_RESPONSE, window "
+       "--pre-filter-size), xsobel or none (default "
+    << toString(p.preFilterType) << ")\n";
   for (const IntOption<MedianParams>& option : medianOptions())
     optionHelp(o, option, m);
-  o << "  --threads N              threads for the front end's stripes, 1..256 (default: "
-    << (threadsDefault.empty()
-            ? "all " + std::to_string(std::max(1u, std::thread::hardware_concurrency()))
-            : threadsDefault)
+  o << "  --threads N              threads for the front end's stripes, 1..256, 0: all (default: "
+    << (threadsDefault.empty() ? "all, " + std::to_string(resolveThreads(FrontendDefaults::threads))
+                               : threadsDefault)
     << ")\n";
   return o.str();
 }

@@ -10,6 +10,7 @@
 
 #include "horopter/core/option_table.hpp"
 #include "horopter/kernels/stereo_params.hpp"
+#include "horopter/vision/frontend.hpp"
 
 namespace horopter::cli {
 
@@ -78,8 +79,9 @@ ImageSize parseImageSize(const std::string& text, const std::string& option, Ima
 // The stereo flags every command shares (kebab-case names of StereoParams).
 StereoParams parseStereoFlags(Args& args, StereoParams defaults);
 MedianParams parseMedianFlags(Args& args, MedianParams defaults);
-// --threads, 1..256; `fallback` when absent (0: all cores).
-int parseThreads(Args& args, int fallback = 0);
+// --threads, 1..256 or 0 (all hardware threads); `fallback` when absent
+// (by default FrontendDefaults::threads, all of them). Returns the resolved count.
+int parseThreads(Args& args, int fallback = FrontendDefaults::threads);
 // Help text for those flags, with the defaults; `threadsDefault` says what
 // --threads defaults to where the command's fallback is not all cores.
 std::string stereoFlagsHelp(const StereoParams& defaults, const MedianParams& median,

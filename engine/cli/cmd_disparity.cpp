@@ -26,7 +26,7 @@ struct PairJob {
   std::string left, right, outDir;
   StereoParams stereo;
   MedianParams median;
-  std::string backend = "auto";
+  std::string backend = FrontendDefaults::backend;
   int threads = 1;
   std::optional<double> fixationDisparity;  // px; default: the middle of the search range
   std::optional<double> focalPx;            // px; default: the image width

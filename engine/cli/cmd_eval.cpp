@@ -47,7 +47,7 @@ constexpr CommandOption kOptions[] = {
     {.kind = OptionKind::Text,
      .flag = "--backend",
      .value = "B",
-     .fallback = "auto",
+     .fallback = FrontendDefaults::backend,
      .help = "scalar, avx2, opencl, opencl:N or auto"},
     {.kind = OptionKind::Choice,
      .flag = "--peer",
@@ -118,7 +118,7 @@ int runEvalStereo(Args& args) {
   const StereoScores ours = evaluateHoropter(l, r, g, stereo, median, backend, options);
   std::optional<StereoScores> theirs;
   if (!peer.empty()) {
-    if (stereo.preFilterType != PreFilterType::XSobel)
+    if (stereo.preFilterType == PreFilterType::None)
       std::cerr << "horopter: note: cv::StereoBM has no unfiltered mode; the peer runs with its "
                    "normalized-response prefilter\n";
     theirs = evaluateOpenCvStereoBM(l, r, g, stereo, options);

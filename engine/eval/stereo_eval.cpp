@@ -147,6 +147,7 @@ cv::Ptr<cv::StereoBM> makeOpenCvStereoBM(const StereoParams& params) {
   bm->setPreFilterType(params.preFilterType == PreFilterType::XSobel
                            ? cv::StereoBM::PREFILTER_XSOBEL
                            : cv::StereoBM::PREFILTER_NORMALIZED_RESPONSE);
+  bm->setPreFilterSize(params.preFilterSize);
   bm->setPreFilterCap(params.preFilterCap);
   bm->setTextureThreshold(params.textureThreshold);
   bm->setUniquenessRatio(params.uniquenessRatio);

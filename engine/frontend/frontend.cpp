@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
+#include <thread>
 
 #include "horopter/core/error.hpp"
 #include "horopter/kernels/kernels.hpp"
@@ -19,12 +21,23 @@ double msSince(Clock::time_point start) {
 
 }  // namespace
 
+int resolveThreads(int threads) {
+  if (threads == 0) {
+    const unsigned hardware = std::thread::hardware_concurrency();
+    return static_cast<int>(std::clamp(hardware, 1u, 256u));
+  }
+  if (threads < 1 || threads > 256)
+    throw Error("thread count must be within 1..256, or 0 for every hardware thread, got " +
+                std::to_string(threads));
+  return threads;
+}
+
 StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& median,
                                const Backend& backend, int threads)
     : stereo_(stereo),
       median_(median),
       backend_(&backend),
-      pool_(std::make_unique<ThreadPool>(threads)) {
+      pool_(std::make_unique<ThreadPool>(resolveThreads(threads))) {
   validate(stereo_);
   validate(median_);
 }
@@ -32,6 +45,11 @@ StereoFrontend::StereoFrontend(const StereoParams& stereo, const MedianParams& m
 StereoFrontend::~StereoFrontend() = default;
 StereoFrontend::StereoFrontend(StereoFrontend&&) noexcept = default;
 StereoFrontend& StereoFrontend::operator=(StereoFrontend&&) noexcept = default;
+
+void StereoFrontend::setStereoParams(const StereoParams& stereo) {
+  validate(stereo);
+  stereo_ = stereo;
+}
 
 int StereoFrontend::threads() const {
   return pool_->threads();
@@ -71,22 +89,22 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   timings_ = {};
 
   auto start = Clock::now();
-  const bool xsobel = params.preFilterType == PreFilterType::XSobel;
+  const bool filter = params.preFilterType != PreFilterType::None;
   const bool wantTexture = params.textureThreshold > 0;
   ConstImageView matchLeft = left;
   ConstImageView matchRight = right;
   const int height = left.height;
-  if (xsobel) {
+  if (filter) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, params.preFilterCap, leftFiltered_.view(),
-                      wantTexture ? texture_.view() : ImageView{}, *backend_, rows);
-      prefilterXSobel(right, params.preFilterCap, rightFiltered_.view(), {}, *backend_, rows);
+      prefilter(left, params, leftFiltered_.view(), wantTexture ? texture_.view() : ImageView{},
+                *backend_, rows);
+      prefilter(right, params, rightFiltered_.view(), {}, *backend_, rows);
     });
     matchLeft = leftFiltered_.view();
     matchRight = rightFiltered_.view();
   } else if (wantTexture) {
     forEachStripe(height, [&](RowRange rows) {
-      prefilterXSobel(left, params.preFilterCap, {}, texture_.view(), *backend_, rows);
+      prefilter(left, params, {}, texture_.view(), *backend_, rows);
     });
   }
   timings_.prefilter = msSince(start);

@@ -92,8 +92,12 @@ horopter_status horopter_backend_info(int index, const char** name, int* availab
 
 typedef struct horopter_matcher horopter_matcher;
 
-/* backend: "auto", "scalar", "avx2", "opencl", ... (NULL = "auto");
- * threads: 1..256, the rows of each kernel split over that many threads. */
+/* backend: "auto", "scalar", "avx2", "opencl", ... (NULL = the library's
+ * default, "auto": the best available CPU backend);
+ * threads: 1..256, the rows of each kernel split over that many threads, or
+ * 0 = the library's default, one per hardware thread. These are the defaults
+ * of C++'s StereoFrontend, Python's StereoMatcher and the CLI too
+ * (horopter::FrontendDefaults in horopter/vision/frontend.hpp). */
 horopter_status horopter_matcher_create(const horopter_stereo_params* params, const char* backend,
                                         int threads, horopter_matcher** matcher);
 void horopter_matcher_destroy(horopter_matcher* matcher);

@@ -27,6 +27,7 @@ Backend makeScalar() {
   b.available = true;
   KernelTable t;
   t.prefilterXSobel = scalar::prefilterXSobel;
+  t.prefilterNormalized = scalar::prefilterNormalized;
   t.matchBlocks = scalar::matchBlocks;
   t.leftRightCheck = scalar::leftRightCheck;
   t.filterSpeckles = scalar::filterSpeckles;
@@ -45,6 +46,7 @@ Backend makeAvx2() {
   if (!b.available) b.unavailableReason = "this CPU or its OS lacks one of " HOROPTER_AVX2_FEATURES;
   KernelTable t;
   t.prefilterXSobel = avx2::prefilterXSobel;
+  t.prefilterNormalized = avx2::prefilterNormalized;
   t.matchBlocks = avx2::matchBlocks;
   t.leftRightCheck = avx2::leftRightCheck;
   t.filterSpeckles = avx2::filterSpeckles;

@@ -18,6 +18,8 @@ namespace horopter {
 struct KernelTable {
   void (*prefilterXSobel)(const ConstImageView& src, int cap, const ImageView& filtered,
                           const ImageView& texture, RowRange rows);
+  void (*prefilterNormalized)(const ConstImageView& src, int cap, int size,
+                              const ImageView& filtered, const ImageView& texture, RowRange rows);
   void (*matchBlocks)(const ConstImageView& left, const ConstImageView& right,
                       const ConstImageView& texture, const StereoParams& params,
                       const ImageView& disparity, const ImageView& winnerRight, RowRange rows);

@@ -48,15 +48,13 @@ void requireKernel(const void* fn, const Backend& backend, const char* kernel) {
   if (fn == nullptr) throw Error("backend '" + backend.name + "' has no " + kernel + " kernel");
 }
 
-}  // namespace
-
-void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
-                     const ImageView& texture, const Backend& backend, RowRange rows) {
+void checkPrefilterArgs(const ConstImageView& src, int cap, const ImageView& filtered,
+                        const ImageView& texture, const char* kernel) {
   checkView(src, PixelType::U8C1, "prefilter input");
   if (cap < 1 || cap > 63)
     throw Error("preFilterCap must be within 1..63, got " + std::to_string(cap));
   if (filtered.empty() && texture.empty())
-    throw Error("prefilterXSobel: give at least one output (filtered or texture)");
+    throw Error(std::string(kernel) + ": give at least one output (filtered or texture)");
   if (!filtered.empty()) {
     checkView(filtered, PixelType::U8C1, "prefilter output");
     checkSameSize(src, "prefilter input", filtered, "prefilter output");
@@ -66,10 +64,49 @@ void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filter
     checkSameSize(src, "prefilter input", texture, "texture output");
   }
   if (overlaps(src, filtered) || overlaps(src, texture) || overlaps(filtered, texture))
-    throw Error("prefilterXSobel: input and outputs must not overlap");
+    throw Error(std::string(kernel) + ": input and outputs must not overlap");
+}
+
+}  // namespace
+
+void prefilterXSobel(const ConstImageView& src, int cap, const ImageView& filtered,
+                     const ImageView& texture, const Backend& backend, RowRange rows) {
+  checkPrefilterArgs(src, cap, filtered, texture, "prefilterXSobel");
   requireKernel(reinterpret_cast<const void*>(tableOf(backend).prefilterXSobel), backend,
                 "prefilter");
   tableOf(backend).prefilterXSobel(src, cap, filtered, texture, resolveRows(rows, src.height));
+}
+
+void prefilterNormalized(const ConstImageView& src, int cap, int size, const ImageView& filtered,
+                         const ImageView& texture, const Backend& backend, RowRange rows) {
+  checkPrefilterArgs(src, cap, filtered, texture, "prefilterNormalized");
+  if (size < 5 || size > 255 || size % 2 == 0)
+    throw Error("preFilterSize must be odd, 5..255, got " + std::to_string(size));
+  requireKernel(reinterpret_cast<const void*>(tableOf(backend).prefilterNormalized), backend,
+                "normalized-response prefilter");
+  tableOf(backend).prefilterNormalized(src, cap, size, filtered, texture,
+                                       resolveRows(rows, src.height));
+}
+
+void prefilter(const ConstImageView& src, const StereoParams& params, const ImageView& filtered,
+               const ImageView& texture, const Backend& backend, RowRange rows) {
+  validate(params);
+  switch (params.preFilterType) {
+    case PreFilterType::XSobel:
+      prefilterXSobel(src, params.preFilterCap, filtered, texture, backend, rows);
+      return;
+    case PreFilterType::NormalizedResponse:
+      prefilterNormalized(src, params.preFilterCap, params.preFilterSize, filtered, texture,
+                          backend, rows);
+      return;
+    case PreFilterType::None:
+      if (!filtered.empty())
+        throw Error(
+            "prefilter: preFilterType is none, which filters nothing: pass an empty "
+            "filtered output (the texture output gets the x-Sobel texture)");
+      prefilterXSobel(src, params.preFilterCap, {}, texture, backend, rows);
+      return;
+  }
 }
 
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,

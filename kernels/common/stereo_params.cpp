@@ -25,7 +25,9 @@ const IntOption<StereoParams> kStereoOptions[] = {
      &StereoParams::numDisparities},
     {"blockSize", "--block-size", "px", 3, 255, "odd side of the matching window",
      &StereoParams::blockSize},
-    {"preFilterCap", "--pre-filter-cap", "", 1, 63, "x-Sobel clip", &StereoParams::preFilterCap},
+    {"preFilterSize", "--pre-filter-size", "px", 5, 255,
+     "odd window of the normalized-response prefilter", &StereoParams::preFilterSize},
+    {"preFilterCap", "--pre-filter-cap", "", 1, 63, "prefilter clip", &StereoParams::preFilterCap},
     {"textureThreshold", "--texture-threshold", "", 0, 1 << 28,
      "least texture in the window; 0: off", &StereoParams::textureThreshold},
     {"uniquenessRatio", "--uniqueness-ratio", "%", 0, 1000,
@@ -56,8 +58,25 @@ std::span<const IntOption<MedianParams>> medianOptions() {
   return kMedianOptions;
 }
 
+StereoParams stereoBMDefaults(int numDisparities, int blockSize) {
+  StereoParams p;
+  p.minDisparity = 0;
+  p.numDisparities = numDisparities > 0 ? numDisparities : 64;
+  p.blockSize = blockSize;
+  p.preFilterType = PreFilterType::XSobel;
+  p.preFilterSize = 9;
+  p.preFilterCap = 31;
+  p.textureThreshold = 10;
+  p.uniquenessRatio = 15;
+  p.speckleWindowSize = 0;
+  p.speckleRange = 0;
+  p.disp12MaxDiff = -1;
+  return p;
+}
+
 void validate(const StereoParams& p) {
   require(p.blockSize % 2 == 1, "blockSize must be odd (3..255)" + got(p.blockSize));
+  require(p.preFilterSize % 2 == 1, "preFilterSize must be odd (5..255)" + got(p.preFilterSize));
   for (const IntOption<StereoParams>& o : kStereoOptions)
     checkRange(o, p);
   require(p.numDisparities % 16 == 0,
@@ -70,18 +89,29 @@ void validate(const StereoParams& p) {
           "minDisparity + numDisparities must stay within -2047..2047 pixels so that 16 * "
           "disparity fits int16" +
               got(p.minDisparity));
-  require(p.preFilterType == PreFilterType::None || p.preFilterType == PreFilterType::XSobel,
-          "preFilterType must be None or XSobel");
+  require(p.preFilterType == PreFilterType::None || p.preFilterType == PreFilterType::XSobel ||
+              p.preFilterType == PreFilterType::NormalizedResponse,
+          "preFilterType must be NormalizedResponse (0), XSobel (1) or None (2)" +
+              got(static_cast<int>(p.preFilterType)));
 }
 
 const char* toString(PreFilterType t) {
-  return t == PreFilterType::None ? "none" : "xsobel";
+  switch (t) {
+    case PreFilterType::NormalizedResponse:
+      return "normalized";
+    case PreFilterType::XSobel:
+      return "xsobel";
+    case PreFilterType::None:
+      return "none";
+  }
+  return "invalid";
 }
 
 PreFilterType parsePreFilterType(const std::string& s) {
-  if (s == "none") return PreFilterType::None;
+  if (s == "normalized") return PreFilterType::NormalizedResponse;
   if (s == "xsobel") return PreFilterType::XSobel;
-  throw Error("unknown pre-filter type '" + s + "': use none or xsobel");
+  if (s == "none") return PreFilterType::None;
+  throw Error("unknown pre-filter type '" + s + "': use normalized, xsobel or none");
 }
 
 int effectiveMinValid(const MedianParams& m) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "prefilter/prefilter.hpp"
 #include "sad/sad.hpp"
 
 namespace horopter::opencl {
@@ -67,6 +68,7 @@ void Events::clear() {
 
 Kernels::Kernels(Device& device)
     : prefilter(createKernel(device, "prefilter_xsobel")),
+      prefilterNormalized(createKernel(device, "prefilter_normalized")),
       sad(createKernel(device, "sad_match")),
       lrCheck(createKernel(device, "lr_check")),
       median(createKernel(device, "median_filter")),
@@ -105,6 +107,29 @@ void enqueuePrefilter(cl_command_queue q, cl_kernel k, cl_mem src, int width, in
   setArgs(k, src, width, width, height, cap, rows.begin, rows.end, filtered, texture, width,
           static_cast<int>(wantFiltered), static_cast<int>(wantTexture));
   enqueuePerPixel(q, k, width, rows, event, "running the prefilter");
+}
+
+void enqueuePrefilterNormalized(cl_command_queue q, cl_kernel k, cl_mem src, int width, int height,
+                                int cap, int size, RowRange rows, cl_mem filtered, cl_mem texture,
+                                bool wantFiltered, bool wantTexture, cl_event* event) {
+  if (rows.end <= rows.begin) return;
+  const NormalizedWeights w = normalizedWeights(size);
+  setArgs(k, src, width, width, height, cap, size / 2, w.centre, w.mean, rows.begin, rows.end,
+          filtered, texture, width, static_cast<int>(wantFiltered), static_cast<int>(wantTexture));
+  enqueuePerPixel(q, k, width, rows, event, "running the normalized-response prefilter");
+}
+
+void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const StereoParams& p,
+                         cl_mem src, int width, int height, RowRange rows, cl_mem filtered,
+                         cl_mem texture, bool wantFiltered, bool wantTexture, cl_event* event) {
+  if (p.preFilterType == PreFilterType::NormalizedResponse)
+    enqueuePrefilterNormalized(q, kernels.prefilterNormalized.get(), src, width, height,
+                               p.preFilterCap, p.preFilterSize, rows, filtered, texture,
+                               wantFiltered, wantTexture, event);
+  else
+    enqueuePrefilter(q, kernels.prefilter.get(), src, width, height, p.preFilterCap, rows, filtered,
+                     texture, wantFiltered && p.preFilterType != PreFilterType::None, wantTexture,
+                     event);
 }
 
 void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,

@@ -49,7 +49,7 @@ class Events {
 // The kernels of a device's program; one set per thread that enqueues.
 struct Kernels {
   explicit Kernels(Device& device);
-  KernelHandle prefilter, sad, lrCheck, median, mask;
+  KernelHandle prefilter, prefilterNormalized, sad, lrCheck, median, mask;
 };
 
 // Rows [r0, r1) of `view` into the tight buffer / back from it.
@@ -61,6 +61,16 @@ void readRows(cl_command_queue q, cl_mem buffer, const ImageView& view, int r0, 
 void enqueuePrefilter(cl_command_queue q, cl_kernel k, cl_mem src, int width, int height, int cap,
                       RowRange rows, cl_mem filtered, cl_mem texture, bool wantFiltered,
                       bool wantTexture, cl_event* event);
+
+void enqueuePrefilterNormalized(cl_command_queue q, cl_kernel k, cl_mem src, int width, int height,
+                                int cap, int size, RowRange rows, cl_mem filtered, cl_mem texture,
+                                bool wantFiltered, bool wantTexture, cl_event* event);
+
+// The prefilter `p` names (x-Sobel or normalized response, the x-Sobel texture
+// for None), as kernels.hpp's prefilter(): both front ends' one dispatch.
+void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const StereoParams& p,
+                         cl_mem src, int width, int height, RowRange rows, cl_mem filtered,
+                         cl_mem texture, bool wantFiltered, bool wantTexture, cl_event* event);
 
 // Scratch of the matcher, per strip of rows.
 struct SadScratch {

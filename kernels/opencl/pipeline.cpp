@@ -105,18 +105,17 @@ void Pipeline::submit(int index, const ConstImageView& left, const ConstImageVie
   cl_mem d = slot.disparity.get(ctx, s16), wr = slot.winner.get(ctx, s16);
   writeRows(q, l, left, 0, h, false, slot.add("upload left"));
   writeRows(q, r, right, 0, h, false, slot.add("upload right"));
-  const bool xsobel = p.preFilterType == PreFilterType::XSobel;
+  const bool filter = p.preFilterType != PreFilterType::None;
   const bool wantTexture = p.textureThreshold > 0;
-  if (xsobel) {
-    enqueuePrefilter(q, s.kernels->prefilter.get(), l, w, h, p.preFilterCap, all, lf, tex, true,
-                     wantTexture, slot.add("prefilter left"));
-    enqueuePrefilter(q, s.kernels->prefilter.get(), r, w, h, p.preFilterCap, all, rf, tex, true,
-                     false, slot.add("prefilter right"));
+  if (filter) {
+    enqueuePrefilterFor(q, *s.kernels, p, l, w, h, all, lf, tex, true, wantTexture,
+                        slot.add("prefilter left"));
+    enqueuePrefilterFor(q, *s.kernels, p, r, w, h, all, rf, tex, true, false,
+                        slot.add("prefilter right"));
   } else if (wantTexture) {
-    enqueuePrefilter(q, s.kernels->prefilter.get(), l, w, h, p.preFilterCap, all, lf, tex, false,
-                     true, slot.add("texture"));
+    enqueuePrefilterFor(q, *s.kernels, p, l, w, h, all, lf, tex, false, true, slot.add("texture"));
   }
-  enqueueMatch(q, s.kernels->sad.get(), s.device->desc(), ctx, xsobel ? lf : l, xsobel ? rf : r,
+  enqueueMatch(q, s.kernels->sad.get(), s.device->desc(), ctx, filter ? lf : l, filter ? rf : r,
                tex, w, h, p, all, d, wr, slot.sad, slot.add("match"));
   if (p.disp12MaxDiff >= 0)
     enqueueLeftRightCheck(q, s.kernels->lrCheck.get(), d, wr, w, p, all,

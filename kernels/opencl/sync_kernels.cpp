@@ -70,6 +70,26 @@ void prefilter(int index, const ConstImageView& src, int cap, const ImageView& f
   if (!texture.empty()) readRows(call.queue(), outT, texture, rows.begin, rows.end, true, nullptr);
 }
 
+void prefilterNormalized(int index, const ConstImageView& src, int cap, int size,
+                         const ImageView& filtered, const ImageView& texture, RowRange rows) {
+  Call call(index);
+  State& s = call.state();
+  const int w = src.width, h = src.height;
+  const std::size_t bytes = imageBytes(w, h, PixelType::U8C1);
+  cl_mem in = s.in0.get(call.context(), bytes);
+  cl_mem outF = s.out0.get(call.context(), bytes);
+  cl_mem outT = s.out1.get(call.context(), bytes);
+  // The window's rows above and below the range (the edge replicates within them).
+  const int r = size / 2;
+  writeRows(call.queue(), in, src, std::max(0, rows.begin - r), std::min(h, rows.end + r), false,
+            nullptr);
+  enqueuePrefilterNormalized(call.queue(), call.kernels().prefilterNormalized.get(), in, w, h, cap,
+                             size, rows, outF, outT, !filtered.empty(), !texture.empty(), nullptr);
+  if (!filtered.empty())
+    readRows(call.queue(), outF, filtered, rows.begin, rows.end, true, nullptr);
+  if (!texture.empty()) readRows(call.queue(), outT, texture, rows.begin, rows.end, true, nullptr);
+}
+
 void match(int index, const ConstImageView& left, const ConstImageView& right,
            const ConstImageView& texture, const StereoParams& params, const ImageView& disparity,
            const ImageView& winnerRight, RowRange rows) {
@@ -161,6 +181,10 @@ KernelTable tableFor() {
   t.prefilterXSobel = [](const ConstImageView& src, int cap, const ImageView& f,
                          const ImageView& tex,
                          RowRange rows) { prefilter(I, src, cap, f, tex, rows); };
+  t.prefilterNormalized = [](const ConstImageView& src, int cap, int size, const ImageView& f,
+                             const ImageView& tex, RowRange rows) {
+    prefilterNormalized(I, src, cap, size, f, tex, rows);
+  };
   t.matchBlocks = [](const ConstImageView& l, const ConstImageView& r, const ConstImageView& tex,
                      const StereoParams& p, const ImageView& d, const ImageView& wr,
                      RowRange rows) { match(I, l, r, tex, p, d, wr, rows); };

@@ -129,7 +129,14 @@ static void test_bad_input(void) {
   CHECK(horopter_matcher_create(&params, "no-such-backend", 1, &matcher) ==
         HOROPTER_ERROR_INVALID_ARGUMENT);
   CHECK(strlen(horopter_last_error()) > 0);
-  CHECK(horopter_matcher_create(&params, NULL, 0, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(horopter_matcher_create(&params, NULL, -1, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(horopter_last_error(), "thread count") != NULL);
+  CHECK(horopter_matcher_create(&params, NULL, 257, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
+  /* NULL and 0: the library's defaults (auto backend, every hardware thread). */
+  CHECK(horopter_matcher_create(&params, NULL, 0, &matcher) == HOROPTER_OK);
+  CHECK(strlen(horopter_matcher_backend(matcher)) > 0);
+  horopter_matcher_destroy(matcher);
+  matcher = NULL;
   CHECK(horopter_matcher_create(NULL, NULL, 1, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
   CHECK(strstr(horopter_last_error(), "params is NULL") != NULL);
 

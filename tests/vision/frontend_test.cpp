@@ -40,6 +40,11 @@ Chain runKernels(const ConstImageView& left, const ConstImageView& right, const 
     prefilterXSobel(right, p.preFilterCap, rf.view(), {});
     matchLeft = lf.view();
     matchRight = rf.view();
+  } else if (p.preFilterType == PreFilterType::NormalizedResponse) {
+    prefilterNormalized(left, p.preFilterCap, p.preFilterSize, lf.view(), tex.view());
+    prefilterNormalized(right, p.preFilterCap, p.preFilterSize, rf.view(), {});
+    matchLeft = lf.view();
+    matchRight = rf.view();
   } else {
     prefilterXSobel(left, p.preFilterCap, {}, tex.view());
   }
@@ -101,6 +106,10 @@ std::vector<Setting> settings() {
   s.push_back({"range -8..23, median 5", shifted, MedianParams{}});
   shifted.minDisparity = 3;
   s.push_back({"range 3..34, median 3", shifted, m3});
+  StereoParams normalized = stereoBMDefaults(32, 15);
+  normalized.preFilterType = PreFilterType::NormalizedResponse;
+  normalized.preFilterSize = 7;
+  s.push_back({"StereoBM's defaults, normalized response of size 7", normalized, off});
   return s;
 }
 
@@ -116,7 +125,9 @@ TEST(Frontend, ChainEqualsKernelsOneByOne) {
     EXPECT_EQ(&out, &frontend.disparity());
     EXPECT_EQ(frontend.stereoParams().numDisparities, s.p.numDisparities);
     EXPECT_EQ(frontend.medianParams().kernelSize, s.m.kernelSize);
-    EXPECT_EQ(&frontend.backend(), &scalarBackend());
+    // The defaults are FrontendDefaults': the auto backend, every hardware thread.
+    EXPECT_EQ(&frontend.backend(), &findBackend(FrontendDefaults::backend));
+    EXPECT_EQ(frontend.threads(), resolveThreads(FrontendDefaults::threads));
     const FrontendTimings& t = frontend.timings();
     for (double ms : {t.prefilter, t.match, t.cleanup, t.median, t.mask})
       EXPECT_GE(ms, 0);
@@ -135,6 +146,32 @@ void replaceValue(TestImage& map, std::int16_t from, std::int16_t to) {
 
 // Zone-limited matching: a search range runs the chain over that range, and
 // invalid pixels carry the configured range's marker.
+// setStereoParams: the next frame runs with the new parameters; a bad set
+// throws naming the parameter and leaves the old one in place.
+TEST(Frontend, SetStereoParamsTakesEffectOrKeepsTheOldOnes) {
+  const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 30, 5}, 31);
+  StereoParams a;
+  StereoParams b = a;
+  b.numDisparities = 32;
+  b.preFilterType = PreFilterType::NormalizedResponse;
+  StereoFrontend frontend(a, MedianParams{}, scalarBackend(), 1);
+  StereoFrontend wantB(b, MedianParams{}, scalarBackend(), 1);
+  frontend.setStereoParams(b);
+  frontend.computeDisparity(pair.left.view(), pair.right.view());
+  wantB.computeDisparity(pair.left.view(), pair.right.view());
+  EXPECT_TRUE(sameImage(wantB.disparity().view(), frontend.disparity().view()));
+  StereoParams bad = b;
+  bad.preFilterSize = 4;
+  try {
+    frontend.setStereoParams(bad);
+    ADD_FAILURE() << "an even preFilterSize was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("preFilterSize"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(frontend.stereoParams().preFilterSize, b.preFilterSize);
+  EXPECT_EQ(frontend.stereoParams().numDisparities, 32);
+}
+
 TEST(Frontend, SearchRangeRunsTheChainOverThatRange) {
   const StereoPair pair = stepScenePair(200, 90, StepScene{100, 170, 20, 70, 40, 12}, 37);
   const StereoParams p;  // 0..63

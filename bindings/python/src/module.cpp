@@ -11,7 +11,8 @@ PYBIND11_MODULE(horopter, m) {
   m.doc() =
       "Horopter: stereo disparity (OpenCV StereoBM's parameters), the horopter mask of the zone "
       "of interaction, calibration, geometry and the frame pipeline, on numpy arrays without "
-      "copying the inputs.";
+      "copying the inputs. STEREO_BM_PREFILTER_NORMALIZED_RESPONSE (0) and "
+      "STEREO_BM_PREFILTER_XSOBEL (1) are cv2's StereoBM prefilter constants.";
   // horopter::Error (bad input or a failed operation, with a message that
   // says what to fix) becomes horopter.Error, a ValueError.
   py::register_exception<horopter::Error>(m, "Error", PyExc_ValueError);

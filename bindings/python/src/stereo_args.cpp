@@ -5,34 +5,58 @@
 
 namespace horopter::python {
 
-void applyStereoKwargs(StereoParams& params, const py::kwargs& kwargs) {
-  for (const auto& [key, value] : kwargs) {
-    const std::string name = py::str(key);
-    if (name == "preFilterType") {
-      if (py::isinstance<py::str>(value))
-        params.preFilterType = parsePreFilterType(value.cast<std::string>());
-      else
-        params.preFilterType = value.cast<PreFilterType>();
-      continue;
-    }
-    bool found = false;
-    for (const IntOption<StereoParams>& o : stereoOptions()) {
-      if (name != o.name) continue;
-      if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
-        throw py::type_error(name + " must be an int, got " +
-                             std::string(py::str(py::type::of(value).attr("__name__"))));
-      const long long v = value.cast<long long>();
-      if (v < o.min || v > o.max) throw Error(rangeMessage(o.name, o.unit, o.min, o.max, v));
-      params.*o.member = static_cast<int>(v);
-      found = true;
-    }
-    if (!found) {
-      std::string known = "preFilterType";
-      for (const IntOption<StereoParams>& o : stereoOptions())
-        known += std::string(", ") + o.name;
-      throw py::type_error("unknown stereo parameter '" + name + "': use one of " + known);
-    }
+namespace {
+
+std::string typeName(py::handle value) {
+  return py::str(py::type::of(value).attr("__name__"));
+}
+
+std::string knownNames() {
+  std::string known = "preFilterType";
+  for (const IntOption<StereoParams>& o : stereoOptions())
+    known += std::string(", ") + o.name;
+  return known;
+}
+
+}  // namespace
+
+PreFilterType preFilterTypeFrom(py::handle value) {
+  if (py::isinstance<py::str>(value)) return parsePreFilterType(value.cast<std::string>());
+  if (py::isinstance<PreFilterType>(value)) return value.cast<PreFilterType>();
+  if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+    const long long v = value.cast<long long>();
+    if (v < 0 || v > 2)
+      throw Error(
+          "preFilterType must be 0 (STEREO_BM_PREFILTER_NORMALIZED_RESPONSE), 1 "
+          "(STEREO_BM_PREFILTER_XSOBEL) or 2 (none), got " +
+          std::to_string(v));
+    return static_cast<PreFilterType>(v);
   }
+  throw py::type_error(
+      "preFilterType must be 'normalized', 'xsobel', 'none', 0, 1, 2 or a PreFilterType, got " +
+      typeName(value));
+}
+
+void setStereoField(StereoParams& params, const std::string& name, py::handle value) {
+  if (name == "preFilterType") {
+    params.preFilterType = preFilterTypeFrom(value);
+    return;
+  }
+  for (const IntOption<StereoParams>& o : stereoOptions()) {
+    if (name != o.name) continue;
+    if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+      throw py::type_error(name + " must be an int, got " + typeName(value));
+    const long long v = value.cast<long long>();
+    if (v < o.min || v > o.max) throw Error(rangeMessage(o.name, o.unit, o.min, o.max, v));
+    params.*o.member = static_cast<int>(v);
+    return;
+  }
+  throw py::type_error("unknown stereo parameter '" + name + "': use one of " + knownNames());
+}
+
+void applyStereoKwargs(StereoParams& params, const py::kwargs& kwargs) {
+  for (const auto& [key, value] : kwargs)
+    setStereoField(params, py::str(key), value);
 }
 
 StereoParams stereoParamsFrom(const py::kwargs& kwargs) {

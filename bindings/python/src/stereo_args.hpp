@@ -11,8 +11,15 @@ namespace horopter::python {
 
 namespace py = pybind11;
 
-// Sets each named field; TypeError for an unknown name (listing the known
-// ones). preFilterType takes 'xsobel', 'none' or a PreFilterType.
+// preFilterType from 'normalized' / 'xsobel' / 'none', OpenCV's ints (0 =
+// STEREO_BM_PREFILTER_NORMALIZED_RESPONSE, 1 = STEREO_BM_PREFILTER_XSOBEL; 2 =
+// none) or a PreFilterType. horopter.Error for an int out of range, TypeError
+// for another type.
+PreFilterType preFilterTypeFrom(py::handle value);
+// Sets one field by name, range-checked (horopter.Error naming it); TypeError
+// for an unknown name (listing the known ones) or a value of the wrong type.
+void setStereoField(StereoParams& params, const std::string& name, py::handle value);
+// Sets each named field, as setStereoField.
 void applyStereoKwargs(StereoParams& params, const py::kwargs& kwargs);
 StereoParams stereoParamsFrom(const py::kwargs& kwargs);
 std::string repr(const StereoParams& p);

@@ -27,6 +27,27 @@ HOROPTER_API void prefilterXSobel(const ConstImageView& src, int cap, const Imag
                                   const Backend& backend = scalarBackend(),
                                   RowRange rows = RowRange::all());
 
+// cv::StereoBM's normalized-response prefilter (PREFILTER_NORMALIZED_RESPONSE):
+// each pixel's cross-weighted value less its size x size neighbourhood's mean,
+// in OpenCV's integer arithmetic, clipped to [-cap, cap]. `filtered` receives
+// the clipped value + cap, `texture` its absolute value, as prefilterXSobel's;
+// size is odd, 5..255. kernels/prefilter/prefilter_normalized_scalar.cpp
+// states the exact arithmetic and borders.
+HOROPTER_API void prefilterNormalized(const ConstImageView& src, int cap, int size,
+                                      const ImageView& filtered, const ImageView& texture,
+                                      const Backend& backend = scalarBackend(),
+                                      RowRange rows = RowRange::all());
+
+// The prefilter params.preFilterType names, with its cap and size: writes
+// `filtered` (may be empty) and `texture` (may be empty), as the two functions
+// above. With PreFilterType::None, `filtered` must be empty and `texture`
+// gets the x-Sobel texture (the texture check's input, as in cv::StereoBM's
+// chain). Used by both front ends so that they pick the same kernel.
+HOROPTER_API void prefilter(const ConstImageView& src, const StereoParams& params,
+                            const ImageView& filtered, const ImageView& texture,
+                            const Backend& backend = scalarBackend(),
+                            RowRange rows = RowRange::all());
+
 // SAD block matching with winner-take-all, texture and uniqueness checks and
 // sub-pixel refinement. `left`/`right` are U8C1 (prefiltered or raw), `texture`
 // U8C1 (may be empty when params.textureThreshold == 0). Writes `disparity`

@@ -29,11 +29,32 @@ struct HOROPTER_API FrontendTimings {
   double total() const { return prefilter + match + cleanup + median + mask; }
 };
 
+// The front end's defaults, one set for every entry point: StereoFrontend's
+// constructor here, Python's horopter.StereoMatcher and StereoBM_create, the
+// C API's horopter_matcher_create (backend NULL, threads 0) and the CLI's
+// --backend and --threads (`horopter disparity`, `profile`, `eval`; `run`
+// takes all cores but one when frames are in flight, see cmd_run.cpp).
+struct FrontendDefaults {
+  // The best available backend (HOROPTER_BACKEND may force one): AVX2 where
+  // the CPU has it, else the scalar reference; never OpenCL, which is chosen
+  // by name. Every backend gives the reference's output bit for bit.
+  static constexpr const char* backend = "auto";
+  // 0: one stripe per hardware thread (resolveThreads). The output does not
+  // depend on the thread count.
+  static constexpr int threads = 0;
+};
+
+// A thread count as given (1..256), or for 0 the hardware's thread count (at
+// least 1, at most 256). Throws horopter::Error for anything else.
+HOROPTER_API int resolveThreads(int threads);
+
 class HOROPTER_API StereoFrontend {
  public:
-  // Validates the parameters and the thread count, 1..256 (throws horopter::Error).
+  // Validates the parameters and the thread count, 1..256 or 0 for every
+  // hardware thread (throws horopter::Error). The defaults: FrontendDefaults.
   StereoFrontend(const StereoParams& stereo, const MedianParams& median,
-                 const Backend& backend = scalarBackend(), int threads = 1);
+                 const Backend& backend = findBackend(FrontendDefaults::backend),
+                 int threads = FrontendDefaults::threads);
   ~StereoFrontend();
   StereoFrontend(StereoFrontend&&) noexcept;
   StereoFrontend& operator=(StereoFrontend&&) noexcept;
@@ -63,6 +84,9 @@ class HOROPTER_API StereoFrontend {
   const Image& segmented() const { return segmented_; }
   const FrontendTimings& timings() const { return timings_; }
   const StereoParams& stereoParams() const { return stereo_; }
+  // Replaces the stereo parameters for the next frame; validated first (on a
+  // bad value this throws horopter::Error and keeps the old ones).
+  void setStereoParams(const StereoParams& stereo);
   const MedianParams& medianParams() const { return median_; }
   SearchRange lastRange() const { return lastRange_; }  // the last frame's search range
   const Backend& backend() const { return *backend_; }

@@ -71,8 +71,8 @@ TEST(ConformanceSetup, ScalarReferenceIsRegisteredAndAvailable) {
   EXPECT_TRUE(scalar->available);
   ASSERT_TRUE(scalar->kernels);
   const KernelTable& k = *scalar->kernels;
-  EXPECT_TRUE(k.prefilterXSobel && k.matchBlocks && k.leftRightCheck && k.filterSpeckles &&
-              k.medianFilter && k.horopterMask);
+  EXPECT_TRUE(k.prefilterXSobel && k.prefilterNormalized && k.matchBlocks && k.leftRightCheck &&
+              k.filterSpeckles && k.medianFilter && k.horopterMask);
 }
 
 TEST(ConformanceSetup, BackendNamesAreUniqueAndDescribed) {
@@ -211,7 +211,8 @@ std::string describe(const StereoParams& p) {
     << ", blockSize " << p.blockSize << ", textureThreshold " << p.textureThreshold
     << ", uniquenessRatio " << p.uniquenessRatio << ", disp12MaxDiff " << p.disp12MaxDiff
     << ", speckleWindowSize " << p.speckleWindowSize << ", speckleRange " << p.speckleRange
-    << ", preFilter " << toString(p.preFilterType) << ", cap " << p.preFilterCap;
+    << ", preFilter " << toString(p.preFilterType) << ", size " << p.preFilterSize << ", cap "
+    << p.preFilterCap;
   return o.str();
 }
 
@@ -266,6 +267,64 @@ void conformPrefilterXSobel(const Backend& backend) {
             texture.fillBytes(0xEE);
             prefilterXSobel(in.view(), cap, outputs != 2 ? filtered.view() : ImageView{},
                             outputs != 1 ? texture.view() : ImageView{}, backend);
+            if (outputs != 2) {
+              CONFORM(sameImage(refFiltered.view(), filtered.view()), "filtered output");
+            }
+            if (outputs != 1) {
+              CONFORM(sameImage(refTexture.view(), texture.view()), "texture output");
+            }
+            CONFORM(filtered.canariesIntact(), "filtered output");
+            CONFORM(texture.canariesIntact(), "texture output");
+            CONFORM(untouched(src, in, "prefilter input"), "prefilter input");
+          }
+        }
+      }
+    }
+  }
+}
+
+// The normalized-response prefilter: sizes around the vector steps (16
+// pixels in AVX2) and the window, every window size class (OpenCV's default 9,
+// small 5, 21, and 255, wider than every image here so that the window's
+// border replication dominates), every cap class, both outputs alone and
+// together, and row stripes (the first row of a stripe sums its own window).
+void conformPrefilterNormalized(const Backend& backend) {
+  const int widths[] = {1, 2, 3, 17, 18, 19, 33, 64, 65, 200};
+  const int heights[] = {1, 2, 3, 9, 24};
+  const int sizes[] = {5, 9, 21, 255};
+  const int caps[] = {1, 31, 63, 17};
+  int n = 0;
+  for (int w : widths) {
+    for (int h : heights) {
+      for (Pattern pattern : kPatterns) {
+        const int cap = caps[n % 4];
+        const int size = sizes[(n / 4) % 4];
+        const std::uint64_t seed = static_cast<std::uint64_t>(++n) + 500;
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + patternName(pattern) +
+                     ", cap " + std::to_string(cap) + ", size " + std::to_string(size));
+        const TestImage src = patternImage(w, h, pattern, seed);
+        TestImage refFiltered(w, h, PixelType::U8C1), refTexture(w, h, PixelType::U8C1);
+        prefilterNormalized(src.view(), cap, size, refFiltered.view(), refTexture.view(),
+                            scalarBackend());
+        for (const Layout& layout : kLayouts) {
+          for (int outputs = 0; outputs < 4; ++outputs) {
+            // both, filtered only, texture only, both in three row stripes
+            SCOPED_TRACE(std::string("layout ") + layout.name + ", outputs " +
+                         std::to_string(outputs));
+            const TestImage in = src.clone(layout);
+            TestImage filtered(w, h, PixelType::U8C1, layout),
+                texture(w, h, PixelType::U8C1, layout);
+            filtered.fillBytes(0xEE);
+            texture.fillBytes(0xEE);
+            const ImageView f = outputs != 2 ? filtered.view() : ImageView{};
+            const ImageView t = outputs != 1 ? texture.view() : ImageView{};
+            if (outputs == 3) {
+              for (int i = 0; i < 3; ++i)
+                prefilterNormalized(in.view(), cap, size, f, t, backend,
+                                    RowRange{h * i / 3, h * (i + 1) / 3});
+            } else {
+              prefilterNormalized(in.view(), cap, size, f, t, backend);
+            }
             if (outputs != 2) {
               CONFORM(sameImage(refFiltered.view(), filtered.view()), "filtered output");
             }
@@ -636,6 +695,9 @@ void conformHoropterMask(const Backend& backend) {
 TEST_P(Conformance, PrefilterXSobel) {
   conformPrefilterXSobel(backend());
 }
+TEST_P(Conformance, PrefilterNormalized) {
+  conformPrefilterNormalized(backend());
+}
 TEST_P(Conformance, MatchBlocks) {
   conformMatchBlocks(backend());
 }
@@ -682,6 +744,20 @@ void prefilterIgnoresStride(const ConstImageView& s, int cap, const ImageView& f
   filtered.strideBytes = f.width;
   texture.strideBytes = t.width;
   scalarBackend().kernels->prefilterXSobel(src, cap, filtered, texture, rows);
+}
+// The normalized response of each row stripe as if the stripe were the whole
+// image: the window's rows above and below the stripe are not read.
+void normalizedStripeLocal(const ConstImageView& s, int cap, int size, const ImageView& f,
+                           const ImageView& t, RowRange rows) {
+  const auto slice = [&](auto view) {
+    if (view.empty()) return view;
+    view.data = view.template row<std::uint8_t>(rows.begin);
+    view.height = rows.end - rows.begin;
+    return view;
+  };
+  if (rows.end <= rows.begin) return;
+  scalarBackend().kernels->prefilterNormalized(slice(s), cap, size, slice(f), slice(t),
+                                               RowRange{0, rows.end - rows.begin});
 }
 // Scribbles on its (const) input.
 void maskModifiesInput(const ConstImageView& d, std::span<const std::int16_t> thresholds,
@@ -744,6 +820,16 @@ const Backend& strideless() {
   }();
   return b;
 }
+const Backend& stripeLocal() {
+  static const Backend b = [] {
+    Backend x = make("wrong-normalized");
+    KernelTable t = *x.kernels;
+    t.prefilterNormalized = normalizedStripeLocal;
+    x.kernels = std::make_shared<const KernelTable>(t);
+    return x;
+  }();
+  return b;
+}
 const Backend& scribbler() {
   static const Backend b = [] {
     Backend x = make("wrong-mask");
@@ -781,6 +867,7 @@ TEST(ConformanceSelfTest, CatchesEachKindOfDeviation) {
   EXPECT_NONFATAL_FAILURE(conformMatchBlocks(wrong::offByOne()), "pixels differ");
   EXPECT_NONFATAL_FAILURE(conformMedianFilter(wrong::overrun()), "canary");
   EXPECT_NONFATAL_FAILURE(conformPrefilterXSobel(wrong::strideless()), "layout padded");
+  EXPECT_NONFATAL_FAILURE(conformPrefilterNormalized(wrong::stripeLocal()), "pixels differ");
   EXPECT_NONFATAL_FAILURE(conformHoropterMask(wrong::scribbler()), "disparity was modified");
   EXPECT_NONFATAL_FAILURE(conformFilterSpeckles(wrong::noSpeckles()), "pixels differ");
   EXPECT_NONFATAL_FAILURE(conformLeftRightCheck(wrong::truncatingCheck()), "pixels differ");
@@ -955,7 +1042,11 @@ TEST_P(Conformance, FrontendRandomConfigurations) {
     p.blockSize = 2 * rng.uniform(1, 20) + 1;
     p.numDisparities = 16 * rng.uniform(1, 8);
     p.minDisparity = rng.uniform(-40, 40);
-    p.preFilterType = rng.chance(75) ? PreFilterType::XSobel : PreFilterType::None;
+    const int type = rng.uniform(0, 3);  // XSobel twice as often as the others
+    p.preFilterType = type == 0   ? PreFilterType::None
+                      : type == 1 ? PreFilterType::NormalizedResponse
+                                  : PreFilterType::XSobel;
+    p.preFilterSize = 2 * rng.uniform(2, 20) + 1;
     p.preFilterCap = rng.uniform(1, 63);
     p.textureThreshold = rng.chance(30) ? 0 : rng.uniform(1, 400);
     p.uniquenessRatio = rng.chance(30) ? 0 : rng.uniform(1, 100);
@@ -1018,10 +1109,13 @@ void compareOnRealPair(const Backend& backend, const std::string& leftPath,
   raw.preFilterType = PreFilterType::None;
   raw.textureThreshold = 0;
   raw.disp12MaxDiff = -1;
+  StereoParams normalized = defaults;  // cv::StereoBM's other prefilter, its default window
+  normalized.preFilterType = PreFilterType::NormalizedResponse;
+  normalized.blockSize = 21;
   MedianParams m3;
   m3.kernelSize = 3;
   const std::pair<StereoParams, MedianParams> settings[] = {
-      {defaults, MedianParams{}}, {small, m3}, {raw, MedianParams{}}};
+      {defaults, MedianParams{}}, {small, m3}, {raw, MedianParams{}}, {normalized, MedianParams{}}};
   int n = 0;
   for (const auto& [p, m] : settings) {
     SCOPED_TRACE("setting " + std::to_string(n++) + ": " + describe(p));

@@ -45,6 +45,10 @@ std::vector<Setting> settings() {
   speckleNoMedian.numDisparities = 16;
   speckleNoMedian.blockSize = 7;
   out.push_back({"speckles, no median", speckleNoMedian, off});
+  StereoParams normalized = stereoBMDefaults(32, 11);  // cv::StereoBM's other prefilter
+  normalized.preFilterType = PreFilterType::NormalizedResponse;
+  normalized.preFilterSize = 13;
+  out.push_back({"StereoBM's defaults, normalized response", normalized, off});
   return out;
 }
 
