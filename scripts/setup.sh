@@ -14,6 +14,7 @@ packages=(
   clang-14 libclang-rt-14-dev             # scripts/fuzz.sh: libFuzzer is in clang-rt's archives
   python3-dev pybind11-dev python3-numpy python3-pytest   # the Python module and its pytest suite
   python3-distributed                     # Dask: evaluation trials spread over a cluster
+  python3-venv                            # python3 -m venv, for `pip install .` (README)
 )
 
 missing=()

@@ -27,16 +27,28 @@ struct Failed : horopter::Error {
   using horopter::Error::Error;
 };
 
+// `message` with the C++ members it names (numDisparities) written as the C
+// structs' fields (num_disparities): c_names.cpp.
+std::string inCNames(std::string message);
+
+inline void storeMessage(const char* what) noexcept {
+  try {
+    tLastError = inCNames(what);
+  } catch (...) {  // out of memory while rewriting: an empty message, no exception
+    tLastError.clear();
+  }
+}
+
 template <typename Fn>
 horopter_status guarded(Fn&& fn) noexcept {
   try {
     fn();
     return HOROPTER_OK;
   } catch (const Failed& e) {
-    tLastError = e.what();
+    storeMessage(e.what());
     return HOROPTER_ERROR_FAILED;
   } catch (const horopter::Error& e) {
-    tLastError = e.what();
+    storeMessage(e.what());
     return HOROPTER_ERROR_INVALID_ARGUMENT;
   } catch (const std::bad_alloc&) {
     tLastError = "out of memory";

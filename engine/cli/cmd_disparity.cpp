@@ -118,7 +118,8 @@ const char* kPairHelpTail =
     "Writes DIR/disparity.png (16-bit, 1/16 px, 0 = invalid or <= 0), DIR/disparity16.png\n"
     "(16-bit, 1/16 px + 32768, 0 = invalid: keeps negative disparities),\n"
     "DIR/disparity.pfm (Middlebury PFM, float px, inf = invalid), DIR/disparity_color.png\n"
-    "(near = red, far = blue, invalid = black), DIR/mask.png (255 = inside the zone) and\n"
+    "(near = red, far = blue, invalid = black; a colour scale in px in the bottom-right\n"
+    "corner), DIR/mask.png (255 = inside the zone) and\n"
     "DIR/segmented.png (the left image, zeroed outside the zone).\n";
 
 }  // namespace

@@ -1,4 +1,6 @@
 // `horopter train`: the movement classifier from synthetic labelled sequences.
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -107,13 +109,20 @@ int runTrain(Args& args) {
     std::cerr << "warning: training seeds " << seed << ".." << seed + options.sequences - 1
               << " overlap the evaluation range (below " << kEvaluationSeedLimit
               << "): scores on those seeds will not be held-out\n";
-  int lastTenth = -1;
+  // On a terminal the count rewrites its line every tenth; into a file or a
+  // pipe (a CI log) a plain line every quarter, never a carriage return.
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const int steps = tty ? 10 : 4;
+  int lastStep = -1;
   options.progress = [&](int done, int total) {
-    const int tenth = done * 10 / total;
-    if (tenth != lastTenth) {
-      lastTenth = tenth;
+    const int step = done * steps / total;
+    if (step == lastStep) return;
+    lastStep = step;
+    if (tty) {
       std::fprintf(stderr, "\rtraining: %d/%d sequences", done, total);
       if (done == total) std::fprintf(stderr, "\n");
+    } else if (step > 0) {
+      std::fprintf(stderr, "training: %d/%d sequences\n", done, total);
     }
   };
   const MovementModel model = trainMovementModel(options);

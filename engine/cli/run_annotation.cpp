@@ -89,7 +89,10 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
   label(topLeft, "left, zone ROI", 0);
 
   cv::Mat topRight = mosaic(cv::Rect(size.width, 0, size.width, size.height));
-  if (!frame.disparity.empty()) colorizeDisparity(viewOf(frame.disparity), params).copyTo(topRight);
+  if (!frame.disparity.empty()) {
+    colorizeDisparity(viewOf(frame.disparity), params).copyTo(topRight);
+    drawDisparityScale(topRight, params);
+  }
   label(topRight, "disparity (near red, far blue)", 0);
 
   cv::Mat bottomLeft = mosaic(cv::Rect(0, size.height, size.width, size.height));

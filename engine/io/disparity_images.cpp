@@ -1,5 +1,6 @@
 #include "disparity_images.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <string>
 #include <vector>
 #include "file_output.hpp"
 #include "horopter/core/error.hpp"
@@ -56,6 +58,49 @@ cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& p
   cv::Mat out = cv::Mat::zeros(colour.size(), colour.type());
   colour.copyTo(out, valid);
   return out;
+}
+
+namespace {
+
+constexpr int kScaleFont = cv::FONT_HERSHEY_SIMPLEX;
+constexpr double kScaleFontScale = 0.4;
+constexpr int kScaleBarHeight = 8, kScaleMargin = 6, kScaleTextHeight = 14;
+
+}  // namespace
+
+cv::Rect disparityScaleRect(cv::Size view) {
+  // A third of the width, at most 240 px; nothing below 60 px of bar.
+  const int barWidth = std::min(240, view.width / 3);
+  const int height = kScaleBarHeight + kScaleTextHeight + 2 * kScaleMargin;
+  const int width = barWidth + 2 * kScaleMargin;
+  if (barWidth < 60 || view.height < 3 * height) return {};
+  return {view.width - width, view.height - height, width, height};
+}
+
+cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params) {
+  const cv::Rect area = disparityScaleRect(view.size());
+  if (area.empty() || view.type() != CV_8UC3) return {};
+  cv::Mat under = view(area);
+  under.convertTo(under, -1, 0.3);  // a dark backing, readable over any colour
+  const int barWidth = area.width - 2 * kScaleMargin;
+  cv::Mat level(1, barWidth, CV_8UC1);
+  for (int x = 0; x < barWidth; ++x)
+    level.at<std::uint8_t>(0, x) = cv::saturate_cast<std::uint8_t>(255.0 * x / (barWidth - 1));
+  cv::Mat bar;
+  cv::applyColorMap(level, bar, cv::COLORMAP_JET);  // the map's own colours
+  const cv::Rect barArea(area.x + kScaleMargin, area.y + kScaleMargin, barWidth, kScaleBarHeight);
+  cv::Mat barView = view(barArea);  // resize writes into it in place: same size and type
+  cv::resize(bar, barView, barArea.size(), 0, 0, cv::INTER_NEAREST);
+  const int lo = params.minDisparity, hi = params.minDisparity + params.numDisparities;
+  const std::string loText = std::to_string(lo) + " px", hiText = std::to_string(hi) + " px";
+  int baseline = 0;
+  const int hiWidth = cv::getTextSize(hiText, kScaleFont, kScaleFontScale, 1, &baseline).width;
+  const int textY = barArea.y + kScaleBarHeight + kScaleTextHeight - 2;
+  const cv::Scalar white(255, 255, 255);
+  cv::putText(view, loText, {barArea.x, textY}, kScaleFont, kScaleFontScale, white, 1, cv::LINE_AA);
+  cv::putText(view, hiText, {barArea.x + barWidth - hiWidth, textY}, kScaleFont, kScaleFontScale,
+              white, 1, cv::LINE_AA);
+  return area;
 }
 
 void writeDisparityPng(const std::string& path, const ConstImageView& disparity,
@@ -230,7 +275,9 @@ void writeFrontendOutputs(const std::string& dir, const StereoFrontend& frontend
   writeDisparityPng(dir + "/disparity.png", disparity, invalidDisparity(p));
   writeDisparity16Png(dir + "/disparity16.png", disparity, invalidDisparity(p));
   writeDisparityPfm(dir + "/disparity.pfm", disparity, invalidDisparity(p));
-  writeImageFile(dir + "/disparity_color.png", colorizeDisparity(disparity, p), "image");
+  cv::Mat colour = colorizeDisparity(disparity, p);
+  drawDisparityScale(colour, p);
+  writeImageFile(dir + "/disparity_color.png", colour, "image");
   if (!frontend.mask().empty()) writeImageFile(dir + "/mask.png", matOf(frontend.mask()), "image");
   if (!frontend.segmented().empty())
     writeImageFile(dir + "/segmented.png", matOf(frontend.segmented()), "image");

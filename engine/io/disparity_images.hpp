@@ -13,6 +13,14 @@ namespace horopter {
 // invalid = black. The colour scale spans the search range of `params`.
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params);
 
+// The colour scale of colorizeDisparity: a bar in the bottom-right corner of
+// `view` (a BGR image) from the search range's lowest disparity (left, blue)
+// to its highest (right, red), with both values in px at its ends. Returns
+// the rectangle it covers; an empty one (nothing drawn) when the image is
+// too small to hold it. disparityScaleRect gives that rectangle alone.
+cv::Rect disparityScaleRect(cv::Size view);
+cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params);
+
 // Writes `image` to `path` in the format its extension names (.png, .jpg, ...),
 // every byte checked. Throws horopter::Error naming `what`, the file and the
 // reason (a missing folder, a full disk, an extension OpenCV cannot encode).

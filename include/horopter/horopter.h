@@ -5,7 +5,8 @@
  *  - Objects are opaque handles, created by horopter_*_create and released by
  *    horopter_*_destroy (which accepts NULL).
  *  - Every function that can fail returns a horopter_status. On failure,
- *    horopter_last_error() returns a message that says what to fix; it is
+ *    horopter_last_error() returns a message that says what to fix, naming
+ *    the fields of these structs as spelled here (num_disparities); it is
  *    per thread and stays valid until the next failing call on that thread.
  *    No C++ exception ever crosses this interface.
  *  - Images are views over the caller's memory (never copied, never kept

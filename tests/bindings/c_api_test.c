@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <horopter/horopter.h>
 
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,6 +116,50 @@ static void test_known_shift(void) {
   free(right);
 }
 
+/* The last error names `field` as horopter.h spells it, and no C++ member
+ * (a lowercase letter followed by a capital: numDisparities, blockSize). */
+static int names_c_field(const char* field) {
+  const char* message = horopter_last_error();
+  for (const char* p = message; p[0] && p[1]; ++p)
+    if (p[0] >= 'a' && p[0] <= 'z' && p[1] >= 'A' && p[1] <= 'Z') {
+      fprintf(stderr, "C++ name in the message: %s\n", message);
+      return 0;
+    }
+  if (!strstr(message, field)) {
+    fprintf(stderr, "'%s' not named in the message: %s\n", field, message);
+    return 0;
+  }
+  return 1;
+}
+
+/* Each bad field of horopter_stereo_params is named as the struct spells it. */
+static void test_messages_name_c_fields(void) {
+  const struct {
+    const char* field;
+    size_t offset;
+    int value;
+  } cases[] = {
+      {"block_size", offsetof(horopter_stereo_params, block_size), 8},
+      {"num_disparities", offsetof(horopter_stereo_params, num_disparities), 20},
+      {"min_disparity", offsetof(horopter_stereo_params, min_disparity), 5000},
+      {"pre_filter_cap", offsetof(horopter_stereo_params, pre_filter_cap), 0},
+      {"uniqueness_ratio", offsetof(horopter_stereo_params, uniqueness_ratio), -1},
+      {"speckle_window_size", offsetof(horopter_stereo_params, speckle_window_size), -1},
+      {"median_kernel_size", offsetof(horopter_stereo_params, median_kernel_size), 4},
+      {"median_min_valid", offsetof(horopter_stereo_params, median_min_valid), 30},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    horopter_stereo_params params;
+    horopter_stereo_params_default(&params);
+    *(int*)((char*)&params + cases[i].offset) = cases[i].value;
+    horopter_matcher* matcher = NULL;
+    CHECK(horopter_matcher_create(&params, "scalar", 1, &matcher) ==
+          HOROPTER_ERROR_INVALID_ARGUMENT);
+    CHECK(matcher == NULL);
+    CHECK(names_c_field(cases[i].field));
+  }
+}
+
 static void test_bad_input(void) {
   horopter_stereo_params params;
   horopter_stereo_params_default(&params);
@@ -123,7 +168,7 @@ static void test_bad_input(void) {
   params.block_size = 8;
   CHECK(horopter_matcher_create(&params, "scalar", 1, &matcher) == HOROPTER_ERROR_INVALID_ARGUMENT);
   CHECK(matcher == NULL);
-  CHECK(strstr(horopter_last_error(), "blockSize") != NULL);
+  CHECK(names_c_field("block_size"));
   horopter_stereo_params_default(&params);
 
   CHECK(horopter_matcher_create(&params, "no-such-backend", 1, &matcher) ==
@@ -165,7 +210,8 @@ static void test_bad_input(void) {
   horopter_image too_small = {small, 64, 32, 64, HOROPTER_U8C1};
   CHECK(horopter_matcher_compute(matcher, &too_small, &too_small) ==
         HOROPTER_ERROR_INVALID_ARGUMENT);
-  CHECK(strstr(horopter_last_error(), "reduce numDisparities") != NULL);
+  CHECK(strstr(horopter_last_error(), "reduce num_disparities") != NULL);
+  CHECK(names_c_field("num_disparities"));
   CHECK(horopter_matcher_compute(matcher, &a, &a) == HOROPTER_OK);
   int16_t table[96] = {0};
   CHECK(horopter_matcher_mask(matcher, table, 10, NULL) == HOROPTER_ERROR_INVALID_ARGUMENT);
@@ -285,6 +331,7 @@ int main(void) {
   test_version_and_backends();
   test_known_shift();
   test_bad_input();
+  test_messages_name_c_fields();
   test_run();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;

@@ -5,7 +5,9 @@
 #    target must carry C++20);
 #  - examples/cpp (find_package(horopter), target horopter::horopter): embed
 #    and embed_c;
-#  - examples/cpp/embed_c.c compiled by hand with `pkg-config --cflags --libs horopter`.
+#  - examples/cpp/embed_c.c compiled by hand with `pkg-config --cflags --libs horopter`,
+#    and pkg-config's answers checked: -lhoropter alone for --libs (OpenCV and
+#    Eigen are Requires.private), their headers for --cflags.
 # Run by ctest as `cmake -P` (see CMakeLists.txt beside this file).
 cmake_minimum_required(VERSION 3.25)
 
@@ -74,4 +76,31 @@ get_filename_component(libdir "${libdir}" DIRECTORY)
 run(${C_COMPILER} ${extra} "${SOURCE_DIR}/examples/cpp/embed_c.c" -o "${WORK_DIR}/embed_c_pkgconfig"
     ${flags} "-Wl,-rpath,${libdir}")
 run("${WORK_DIR}/embed_c_pkgconfig")
+# OpenCV and Eigen are private requirements: a consumer of the shared library
+# links -lhoropter alone; --cflags still finds their headers (the C++ API's),
+# --static their libraries.
+run(${PKG_CONFIG} --libs horopter)
+if(last_output MATCHES "opencv|-lhoropter.*-l")
+  message(FATAL_ERROR "pkg-config --libs horopter gives more than -lhoropter: ${last_output}")
+endif()
+if(NOT last_output MATCHES "-lhoropter")
+  message(FATAL_ERROR "pkg-config --libs horopter lacks -lhoropter: ${last_output}")
+endif()
+run(${PKG_CONFIG} --print-requires horopter)
+string(STRIP "${last_output}" last_output)
+if(NOT last_output STREQUAL "")
+  message(FATAL_ERROR "horopter.pc has public requirements: ${last_output}")
+endif()
+run(${PKG_CONFIG} --print-requires-private horopter)
+if(NOT last_output MATCHES "opencv4" OR NOT last_output MATCHES "eigen3")
+  message(FATAL_ERROR "horopter.pc lacks the private opencv4 and eigen3: ${last_output}")
+endif()
+run(${PKG_CONFIG} --cflags horopter)
+if(NOT last_output MATCHES "opencv4" OR NOT last_output MATCHES "eigen3")
+  message(FATAL_ERROR "pkg-config --cflags horopter lacks OpenCV's or Eigen's headers: ${last_output}")
+endif()
+run(${PKG_CONFIG} --libs --static horopter)
+if(NOT last_output MATCHES "-lopencv_core")
+  message(FATAL_ERROR "pkg-config --libs --static horopter lacks OpenCV: ${last_output}")
+endif()
 message(STATUS "install consumer: passed")

@@ -3,7 +3,7 @@
 #   cmake [-DREQUIRE=file1|file2] [-DEXPECT_EXIT=0|nonzero|N]
 #         [-DSTDOUT_REGEX=re] [-DSTDOUT_NOT_REGEX=re] [-DSTDERR_REGEX=re]
 #         [-DSTDERR_NOT_REGEX=re]
-#         [-DOUT_DIR=dir -DOUT_FILES=a.png|b.png]
+#         [-DOUT_DIR=dir -DOUT_FILES=a.png|b.png] [-DNO_CARRIAGE_RETURN=ON]
 #         -P run_cli.cmake -- COMMAND [ARG...]
 #
 # REQUIRE: files the test needs (real data). When one is missing the script
@@ -12,6 +12,8 @@
 # EXPECT_EXIT: the exit status wanted (default 0); "nonzero" for any failure.
 # STDOUT_REGEX / STDERR_REGEX: regular expressions the outputs must match.
 # STDOUT_NOT_REGEX / STDERR_NOT_REGEX: regular expressions the outputs must not match.
+# NO_CARRIAGE_RETURN: neither output may hold a '\r' (the outputs are pipes here,
+#   not terminals, so no progress bar may rewrite its line into them).
 # OUT_DIR: emptied before the run; OUT_FILES must then exist in it, non-empty.
 # Lists use "|" as separator (a ";" would be split by add_test).
 
@@ -77,6 +79,12 @@ if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
 endif()
 if(DEFINED STDERR_NOT_REGEX AND err MATCHES "${STDERR_NOT_REGEX}")
   string(APPEND problems "\n  stderr matches what it must not: ${STDERR_NOT_REGEX}")
+endif()
+if(NO_CARRIAGE_RETURN)
+  string(FIND "${out}${err}" "\r" carriage_return)
+  if(NOT carriage_return EQUAL -1)
+    string(APPEND problems "\n  the output holds a carriage return (a progress bar outside a terminal)")
+  endif()
 endif()
 if(DEFINED OUT_FILES)
   string(REPLACE "|" ";" wanted "${OUT_FILES}")

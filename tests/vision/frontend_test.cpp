@@ -337,11 +337,14 @@ TEST(Frontend, WritesItsOutputsAsImages) {
       else
         ASSERT_EQ(pfm.at<float>(y, x), d / 16.0f) << x << "," << y;
     }
-  // disparity_color.png: black where invalid, coloured elsewhere.
+  // disparity_color.png: black where invalid, coloured elsewhere, but for
+  // the colour scale in its corner.
   const cv::Mat colourPng = cv::imread((dir / "disparity_color.png").string(), cv::IMREAD_COLOR);
   ASSERT_EQ(colourPng.size(), cv::Size(w, h));
+  const cv::Rect scale = disparityScaleRect(colourPng.size());
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      if (scale.contains({x, y})) continue;
       const bool isInvalid = frontend.disparity().row<std::int16_t>(y)[x] == inv;
       const cv::Vec3b c = colourPng.at<cv::Vec3b>(y, x);
       ASSERT_EQ(c == cv::Vec3b(0, 0, 0), isInvalid) << x << "," << y;
@@ -486,6 +489,33 @@ TEST(Frontend, ColourViewGoesFromBlueToRed) {
   EXPECT_GT(near[2], far[2]) << "red";
   EXPECT_GT(far[0], near[0]) << "blue";
   EXPECT_EQ(colour.at<cv::Vec3b>(0, 2), cv::Vec3b(0, 0, 0)) << "invalid is black";
+}
+
+// The colour scale: blue at its left end (the lowest disparity), red at its
+// right end, the rest of the view untouched.
+TEST(Frontend, ColourScaleRunsFromBlueToRedInItsCorner) {
+  StereoParams p;
+  p.numDisparities = 64;
+  cv::Mat view(240, 320, CV_8UC3, cv::Scalar(10, 200, 30));
+  const cv::Rect area = drawDisparityScale(view, p);
+  ASSERT_FALSE(area.empty());
+  EXPECT_EQ(area, disparityScaleRect(view.size()));
+  EXPECT_EQ(area.br(), cv::Point(view.cols, view.rows)) << "bottom-right corner";
+  cv::Mat outside = view.clone();
+  outside(area).setTo(cv::Scalar(10, 200, 30));
+  const cv::Scalar fill(10, 200, 30);
+  EXPECT_EQ(cv::norm(outside, cv::Mat(outside.size(), outside.type(), fill), cv::NORM_INF), 0);
+  // The bar's first and last columns, on its middle row (6 px margin, 8 px high).
+  const int y = area.y + 6 + 4;
+  const cv::Vec3b low = view.at<cv::Vec3b>(y, area.x + 6);
+  const cv::Vec3b high = view.at<cv::Vec3b>(y, area.x + area.width - 7);
+  EXPECT_GT(low[0], low[2]) << "the low end is blue";
+  EXPECT_GT(high[2], high[0]) << "the high end is red";
+  // Too small a view gets no scale, and is left as it was.
+  cv::Mat tiny(20, 40, CV_8UC3, cv::Scalar(1, 2, 3));
+  EXPECT_TRUE(drawDisparityScale(tiny, p).empty());
+  EXPECT_EQ(cv::norm(tiny, cv::Mat(tiny.size(), tiny.type(), cv::Scalar(1, 2, 3)), cv::NORM_INF),
+            0);
 }
 
 }  // namespace

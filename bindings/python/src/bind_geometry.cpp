@@ -65,23 +65,37 @@ void bindGeometry(py::module_& m) {
   m.def("fixation_from_disparity", &fixationFromDisparity, py::arg("geometry"), py::arg("u"),
         py::arg("disparity_px"), "The fixation seen at column u with this disparity (px)");
   m.def("fixation_from_vergence", &fixationFromVergence, py::arg("baseline"),
-        py::arg("vergence_rad"));
+        py::arg("vergence_rad"),
+        "The fixation (x, y, z) of a symmetric vergence: each camera turned inward by half of "
+        "vergence_rad (0 < vergence_rad < pi); on the head's axis");
   m.def("fixation_from_pan_angles", &fixationFromPanAngles, py::arg("baseline"),
-        py::arg("left_pan_rad"), py::arg("right_pan_rad"));
-  m.def("fixation_at_distance", &fixationAtDistance, py::arg("baseline"), py::arg("distance"));
-  m.def("vieth_mueller_circle", &viethMuellerCircle, py::arg("baseline"), py::arg("fixation"));
-  m.def("inside_zone", &insideZone, py::arg("circle"), py::arg("point"));
-  m.def("vergence_angle_at", &vergenceAngleAt, py::arg("baseline"), py::arg("point"));
+        py::arg("left_pan_rad"), py::arg("right_pan_rad"),
+        "The fixation (x, y, z) where the optical axes cross, from each camera's pan (rad from "
+        "+z, positive towards +x); they cross in front only when left_pan_rad > right_pan_rad");
+  m.def("fixation_at_distance", &fixationAtDistance, py::arg("baseline"), py::arg("distance"),
+        "The fixation (x, y, z) straight ahead at z = distance: the zone reaches exactly that "
+        "far on the head's axis");
+  m.def("vieth_mueller_circle", &viethMuellerCircle, py::arg("baseline"), py::arg("fixation"),
+        "The circle through both camera centres (-B/2, 0), (B/2, 0) and the fixation's (x, z)");
+  m.def("inside_zone", &insideZone, py::arg("circle"), py::arg("point"),
+        "True when the 3-D point is strictly inside the circle in (x, z) and in front of the "
+        "baseline (z > 0)");
+  m.def("vergence_angle_at", &vergenceAngleAt, py::arg("baseline"), py::arg("point"),
+        "The vergence angle (rad) a 3-D point subtends between the two camera centres");
   m.def("depth_from_disparity", &depthFromDisparity, py::arg("geometry"), py::arg("disparity_px"),
         "z = f B / d");
   m.def("point_from_pixel", &pointFromPixel, py::arg("geometry"), py::arg("u"), py::arg("v"),
         py::arg("disparity_px"), "The 3-D point (cyclopean frame) of a left pixel");
-  m.def("to_left_camera_frame", &toLeftCameraFrame, py::arg("geometry"), py::arg("point"));
+  m.def("to_left_camera_frame", &toLeftCameraFrame, py::arg("geometry"), py::arg("point"),
+        "A 3-D point of the cyclopean frame as a FixationPoint in the left camera's frame, for "
+        "horopter_thresholds");
   m.def("horopter_thresholds", &thresholdsForFixation, py::arg("geometry"), py::arg("width"),
         py::arg("fixation"),
         "int16 (width,): per column, the smallest disparity (1/16 px) inside the zone");
   m.def("horopter_thresholds", &thresholdsForCircle, py::arg("geometry"), py::arg("circle"),
-        py::arg("width"));
+        py::arg("width"),
+        "int16 (width,): the same table for a circle (vieth_mueller_circle), cheap enough for "
+        "every frame");
   m.def(
       "zone_extent",
       [](double baseline, const ViethMuellerCircle& circle) {
@@ -95,8 +109,12 @@ void bindGeometry(py::module_& m) {
         d["widest"] = e.widest;
         return d;
       },
-      py::arg("baseline"), py::arg("circle"));
-  m.def("zone_width_at", &zoneWidthAt, py::arg("circle"), py::arg("z"));
+      py::arg("baseline"), py::arg("circle"),
+      "How far the zone reaches: a dict of radius, centre_z, far_on_axis, far_on_camera, "
+      "widest_z (depth of the widest chord) and widest (its width)");
+  m.def("zone_width_at", &zoneWidthAt, py::arg("circle"), py::arg("z"),
+        "Width of the zone (the circle's chord parallel to the baseline) at depth z; 0 where "
+        "the plane misses the circle");
 }
 
 }  // namespace horopter::python

@@ -120,7 +120,9 @@ void bindMovement(py::module_& m) {
       [](const std::string& path, const py::iterable& samples) {
         writeBodyTrack(path, samplesFrom(samples));
       },
-      py::arg("path"), py::arg("samples"));
+      py::arg("path"), py::arg("samples"),
+      "Writes body samples (dicts as in a pipeline frame's 'body') as a body track file, as "
+      "`horopter classify --write-track` does; read_body_track reads it back");
   py::list names;
   for (int i = 0; i < kMovementClassCount; ++i)
     names.append(movementClassName(static_cast<MovementClass>(i)));

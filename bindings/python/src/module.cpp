@@ -15,7 +15,8 @@ PYBIND11_MODULE(horopter, m) {
       "STEREO_BM_PREFILTER_XSOBEL (1) are cv2's StereoBM prefilter constants.";
   // horopter::Error (bad input or a failed operation, with a message that
   // says what to fix) becomes horopter.Error, a ValueError.
-  py::register_exception<horopter::Error>(m, "Error", PyExc_ValueError);
+  py::register_exception<horopter::Error>(m, "Error", PyExc_ValueError).attr("__doc__") =
+      "Bad input or a failed operation, with a message that says what to fix (a ValueError)";
   m.attr("__version__") = HOROPTER_VERSION_STRING;  // horopter/version.h
   horopter::python::bindStereo(m);
   horopter::python::bindKernels(m);

@@ -5,6 +5,8 @@ import os
 import re
 import subprocess
 
+import pytest
+
 import horopter
 
 
@@ -54,3 +56,33 @@ def test_license_is_apache_2(source_dir):
     assert "END OF TERMS AND CONDITIONS" in text
     with open(pyproject) as f:
         assert 'license = {text = "Apache-2.0"}' in f.read()
+
+
+def read_toml(path):
+    tomllib = pytest.importorskip("tomllib", reason="tomllib needs Python 3.11+")
+    with open(path, "rb") as f:
+        return tomllib.load(f)
+
+
+def test_root_pyproject_builds_this_package(source_dir):
+    """`pip install .` at the root: the same package as bindings/python's
+    (name, version = version.h, licence, dependencies), the module's target
+    only, the tests and bench off. Checked without running pip (minutes)."""
+    expected = header_version(source_dir)
+    root = os.path.join(source_dir, "pyproject.toml")
+    if expected is None or not os.path.exists(root):
+        pytest.skip("an installed module without the sources")
+    top = read_toml(root)
+    bindings = read_toml(os.path.join(source_dir, "bindings", "python", "pyproject.toml"))
+    assert top["project"]["name"] == "horopter"
+    assert top["project"]["version"] == expected
+    for key in ("name", "version", "license", "dependencies", "requires-python"):
+        assert top["project"][key] == bindings["project"][key], key
+    assert top["build-system"]["build-backend"] == "scikit_build_core.build"
+    build = top["tool"]["scikit-build"]
+    assert build["build"]["targets"] == ["horopter_python"]
+    defines = build["cmake"]["define"]
+    assert defines["HOROPTER_BUILD_PYTHON"] == "ON"
+    for off in ("HOROPTER_BUILD_TESTS", "HOROPTER_BUILD_BENCH", "HOROPTER_INSTALL"):
+        assert defines[off] == "OFF", off
+    assert os.path.exists(os.path.join(source_dir, top["project"]["readme"]))
