@@ -235,9 +235,10 @@ constexpr CommandOption kOptions[] = {
      .value = "N",
      .min = 1,
      .max = 8,
-     .fallback = "1",
-     .help = "run.avi at 1/N of the view's width and height; the video is encoded on its own "
-             "thread, the stills stay full size"},
+     .fallback = "2",
+     .help = "run.avi at 1/N of the view's width and height (2: 640x480, a third of the "
+             "full size's encoding cost); the video is encoded on its own thread, the stills "
+             "stay full size"},
 };
 
 // What `horopter run` does: the pipeline's configuration and the CLI's own
