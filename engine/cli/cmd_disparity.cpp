@@ -17,6 +17,7 @@
 #include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
 #include "option_checks.hpp"
+#include "shared_options.hpp"
 
 namespace horopter::cli {
 
@@ -85,27 +86,10 @@ constexpr CommandOption kOptions[] = {
      .flag = "--example",
      .help = "Middlebury's Aloe pair from Debian's opencv-doc instead of LEFT RIGHT"},
     {.kind = OptionKind::Heading, .flag = "Horopter zone"},
-    {.kind = OptionKind::Number,
-     .flag = "--fixation-disparity",
-     .value = "D",
-     .min = 1e-3,
-     .max = 1e6,
-     .unit = "px",
-     .help = "disparity of the fixation point on the centre column; the Vieth-Mueller circle "
-             "passes through it and both cameras (default: the middle of the search range)"},
-    {.kind = OptionKind::Number,
-     .flag = "--focal-px",
-     .value = "F",
-     .min = 1e-3,
-     .max = 1e7,
-     .unit = "px",
-     .help = "focal length of the rectified pair (default: the image width)"},
+    kFixationDisparityOption,
+    kFocalPxOption,
     {.kind = OptionKind::Heading, .flag = "Other"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = "auto",
-     .help = "scalar, avx2, opencl... or auto (see horopter devices)"},
+    kBackendOption,
     {.kind = OptionKind::Text,
      .flag = "--out",
      .alias = "-o",

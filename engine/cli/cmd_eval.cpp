@@ -12,6 +12,7 @@
 #include "json_text.hpp"
 #include "option_checks.hpp"
 #include "report_format.hpp"
+#include "shared_options.hpp"
 
 namespace horopter::cli {
 
@@ -44,11 +45,7 @@ constexpr CommandOption kOptions[] = {
      .max = 1e9,
      .help = "disparity = ground-truth value / S (required for images; PFM: default 1)"},
     {.kind = OptionKind::Heading, .flag = "Other"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = FrontendDefaults::backend,
-     .help = "scalar, avx2, opencl, opencl:N or auto"},
+    kBackendOption,
     {.kind = OptionKind::Choice,
      .flag = "--peer",
      .value = "P",

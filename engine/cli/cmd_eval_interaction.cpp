@@ -15,6 +15,7 @@
 #include "json_text.hpp"
 #include "option_checks.hpp"
 #include "report_format.hpp"
+#include "shared_options.hpp"
 
 namespace horopter::cli {
 
@@ -105,24 +106,9 @@ constexpr CommandOption kOptions[] = {
      .value = "WxH",
      .fallback = "640x480",
      .help = "image size, 64x48..4096x4096"},
-    {.kind = OptionKind::Choice,
-     .flag = "--scope",
-     .value = "S",
-     .fallback = "both",
-     .choices = "region,full,both",
-     .help = "where faces and hands are detected"},
-    {.kind = OptionKind::Integer,
-     .flag = "--threads",
-     .value = "N",
-     .min = 1,
-     .max = 256,
-     .fallback = "1",
-     .help = "threads of the disparity stage"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = "auto",
-     .help = "front end backend"},
+    kTrialScopeOption,
+    kTrialThreadsOption,
+    kBackendOption,
     {.kind = OptionKind::Integer,
      .flag = "--jobs",
      .value = "N",

@@ -23,6 +23,7 @@
 #include "option_checks.hpp"
 #include "report_format.hpp"
 #include "run_annotation.hpp"
+#include "shared_options.hpp"
 
 namespace horopter::cli {
 
@@ -87,31 +88,10 @@ constexpr CommandOption kOptions[] = {
      .value = "WxH",
      .fallback = "640x480",
      .help = "image size, 64x64..4096x4096"},
-    {.kind = OptionKind::Choice,
-     .flag = "--scope",
-     .value = "S",
-     .fallback = "both",
-     .choices = "region,full,both",
-     .help = "where faces and hands are detected"},
-    {.kind = OptionKind::Integer,
-     .flag = "--threads",
-     .value = "N",
-     .min = 1,
-     .max = 256,
-     .fallback = "1",
-     .help = "threads of the disparity stage"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = "auto",
-     .help = "front end backend: scalar, avx2, opencl..., auto"},
-    {.kind = OptionKind::Choice,
-     .flag = "--head-formula",
-     .value = "F",
-     .fallback = "atan2",
-     .choices = "atan2,paper",
-     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
-             "lambda f)"},
+    kTrialScopeOption,
+    kTrialThreadsOption,
+    kBackendOption,
+    kHeadFormulaOption,
     {.kind = OptionKind::Switch,
      .flag = "--no-head-control",
      .help = "the head stays still (open loop)"},

@@ -20,6 +20,7 @@
 #include "json_text.hpp"
 #include "option_checks.hpp"
 #include "report_format.hpp"
+#include "shared_options.hpp"
 
 namespace horopter::cli {
 
@@ -77,27 +78,10 @@ constexpr CommandOption kOptions[] = {
      .min = 1e-9,
      .max = 1e9,
      .help = "disparity = ground-truth value / K (needed with --gt)"},
-    {.kind = OptionKind::Number,
-     .flag = "--fixation-disparity",
-     .value = "D",
-     .min = 1e-3,
-     .max = 4096,
-     .unit = "px",
-     .help = "disparity of the fixation on the centre column (default: the full-range map's "
-             "median)"},
-    {.kind = OptionKind::Number,
-     .flag = "--focal-px",
-     .value = "F",
-     .min = 1e-3,
-     .max = 1e7,
-     .unit = "px",
-     .help = "focal length (default: the image width)"},
+    kFixationDisparityOption,
+    kFocalPxOption,
     {.kind = OptionKind::Heading, .flag = "Other"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = "auto",
-     .help = "scalar, avx2, opencl or auto"},
+    kBackendOption,
     {.kind = OptionKind::Switch, .flag = "--json", .help = "print one JSON object"},
 };
 

@@ -32,6 +32,7 @@
 #include "json_text.hpp"
 #include "option_checks.hpp"
 #include "run_annotation.hpp"
+#include "shared_options.hpp"
 #include "video_recorder.hpp"
 
 namespace horopter::cli {
@@ -136,21 +137,8 @@ constexpr CommandOption kOptions[] = {
      .max = 1e6,
      .fallback = "1.5",
      .help = "with --calib: fixation distance straight ahead, in the calibration's unit"},
-    {.kind = OptionKind::Number,
-     .flag = "--fixation-disparity",
-     .value = "D",
-     .min = 1e-3,
-     .max = 1e6,
-     .unit = "px",
-     .help = "without --calib (the source is rectified already): disparity of the fixation "
-             "point on the centre column (default: the middle of the search range)"},
-    {.kind = OptionKind::Number,
-     .flag = "--focal-px",
-     .value = "F",
-     .min = 1e-3,
-     .max = 1e7,
-     .unit = "px",
-     .help = "without --calib: focal length (default: the image width)"},
+    kFixationDisparityOption,
+    kFocalPxOption,
     {.kind = OptionKind::Heading, .flag = "Detection, tracking, head control"},
     {.kind = OptionKind::Choice,
      .flag = "--detect",
@@ -159,13 +147,7 @@ constexpr CommandOption kOptions[] = {
      .choices = "region,full,off",
      .help = "where faces and hands are detected: inside the horopter, the whole image, or "
              "nowhere"},
-    {.kind = OptionKind::Choice,
-     .flag = "--head-formula",
-     .value = "F",
-     .fallback = "atan2",
-     .choices = "atan2,paper",
-     .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d "
-             "lambda f)"},
+    kHeadFormulaOption,
     {.kind = OptionKind::Switch,
      .flag = "--no-head-control",
      .help = "synthetic scene: the head stays still (default: closed loop, a command from "
@@ -189,11 +171,7 @@ constexpr CommandOption kOptions[] = {
              "velocities, and out/telemetry.jsonl logs commands, measured angles and odometry "
              "(real robots: horopter head / horopter base)"},
     {.kind = OptionKind::Heading, .flag = "Scheduling"},
-    {.kind = OptionKind::Text,
-     .flag = "--backend",
-     .value = "B",
-     .fallback = "auto",
-     .help = "scalar, avx2, opencl..., auto"},
+    kBackendOption,
     {.kind = OptionKind::Integer,
      .flag = "--in-flight",
      .value = "K",
