@@ -90,12 +90,24 @@ void copyTable(const std::vector<std::int16_t>& table, int16_t* out) {
 
 namespace horopter::c_api {
 
+static_assert(static_cast<int>(PreFilterType::NormalizedResponse) ==
+              HOROPTER_PREFILTER_NORMALIZED_RESPONSE);
+static_assert(static_cast<int>(PreFilterType::XSobel) == HOROPTER_PREFILTER_XSOBEL);
+static_assert(static_cast<int>(PreFilterType::None) == HOROPTER_PREFILTER_NONE);
+
 void paramsOf(const horopter_stereo_params& c, StereoParams& s, MedianParams& m) {
   s.minDisparity = c.min_disparity;
   s.numDisparities = c.num_disparities;
   s.blockSize = c.block_size;
-  s.preFilterType =
-      c.pre_filter_xsobel ? horopter::PreFilterType::XSobel : horopter::PreFilterType::None;
+  if (c.pre_filter_type < HOROPTER_PREFILTER_NORMALIZED_RESPONSE ||
+      c.pre_filter_type > HOROPTER_PREFILTER_NONE)
+    throw InvalidArgument(
+        "pre_filter_type must be HOROPTER_PREFILTER_NORMALIZED_RESPONSE (0), "
+        "HOROPTER_PREFILTER_XSOBEL (1) or HOROPTER_PREFILTER_NONE (2), got " +
+        std::to_string(c.pre_filter_type));
+  // The enumerators carry OpenCV's values, as PreFilterType's do.
+  s.preFilterType = static_cast<horopter::PreFilterType>(c.pre_filter_type);
+  s.preFilterSize = c.pre_filter_size;
   s.preFilterCap = c.pre_filter_cap;
   s.textureThreshold = c.texture_threshold;
   s.uniquenessRatio = c.uniqueness_ratio;
@@ -141,7 +153,8 @@ void horopter_stereo_params_default(horopter_stereo_params* params) {
   params->min_disparity = s.minDisparity;
   params->num_disparities = s.numDisparities;
   params->block_size = s.blockSize;
-  params->pre_filter_xsobel = s.preFilterType == horopter::PreFilterType::XSobel ? 1 : 0;
+  params->pre_filter_type = static_cast<int>(s.preFilterType);
+  params->pre_filter_size = s.preFilterSize;
   params->pre_filter_cap = s.preFilterCap;
   params->texture_threshold = s.textureThreshold;
   params->uniqueness_ratio = s.uniquenessRatio;

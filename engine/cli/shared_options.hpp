@@ -39,8 +39,9 @@ inline constexpr CommandOption kHeadFormulaOption = {
     .value = "F",
     .fallback = "atan2",
     .choices = "atan2,paper",
-    .help = "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d lambda "
-            "f)"};
+    .help =
+        "the head's angles from the 3-D head point (atan2) or the paper's tan = u / (d lambda "
+        "f)"};
 
 // The zone of a pair rectified already (no calibration): its fixation
 // disparity and focal length.
@@ -51,9 +52,10 @@ inline constexpr CommandOption kFixationDisparityOption = {
     .min = 1e-3,
     .max = 1e6,
     .unit = "px",
-    .help = "disparity of the fixation point on the centre column, for a pair rectified already "
-            "(no --calib); the Vieth-Mueller circle passes through it and both cameras (default: "
-            "the middle of the search range)"};
+    .help =
+        "disparity of the fixation point on the centre column, for a pair rectified already "
+        "(no --calib); the Vieth-Mueller circle passes through it and both cameras (default: "
+        "the middle of the search range)"};
 inline constexpr CommandOption kFocalPxOption = {
     .kind = OptionKind::Number,
     .flag = "--focal-px",

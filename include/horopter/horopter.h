@@ -63,11 +63,19 @@ typedef struct horopter_image {
 
 /* ---- Parameters (cv::StereoBM's names and meanings) -------------------- */
 
+/* The prefilter, with OpenCV's values (cv::StereoBM::PREFILTER_*). */
+typedef enum horopter_pre_filter_type {
+  HOROPTER_PREFILTER_NORMALIZED_RESPONSE = 0, /* pixel less its window's mean, clipped */
+  HOROPTER_PREFILTER_XSOBEL = 1,              /* clipped horizontal Sobel (the default) */
+  HOROPTER_PREFILTER_NONE = 2                 /* raw intensities (Horopter's own) */
+} horopter_pre_filter_type;
+
 typedef struct horopter_stereo_params {
   int min_disparity;       /* smallest disparity searched, px; may be negative */
   int num_disparities;     /* search range, px; a positive multiple of 16 */
   int block_size;          /* odd, 3..255 */
-  int pre_filter_xsobel;   /* 1: clipped x-Sobel (OpenCV's PREFILTER_XSOBEL), 0: raw intensities */
+  int pre_filter_type;     /* a horopter_pre_filter_type */
+  int pre_filter_size;     /* the normalized response's window: odd, 5..255 */
   int pre_filter_cap;      /* 1..63 */
   int texture_threshold;   /* 0 = off */
   int uniqueness_ratio;    /* percent; 0 = off */

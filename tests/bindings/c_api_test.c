@@ -143,6 +143,8 @@ static void test_messages_name_c_fields(void) {
       {"num_disparities", offsetof(horopter_stereo_params, num_disparities), 20},
       {"min_disparity", offsetof(horopter_stereo_params, min_disparity), 5000},
       {"pre_filter_cap", offsetof(horopter_stereo_params, pre_filter_cap), 0},
+      {"pre_filter_size", offsetof(horopter_stereo_params, pre_filter_size), 4},
+      {"pre_filter_type", offsetof(horopter_stereo_params, pre_filter_type), 7},
       {"uniqueness_ratio", offsetof(horopter_stereo_params, uniqueness_ratio), -1},
       {"speckle_window_size", offsetof(horopter_stereo_params, speckle_window_size), -1},
       {"median_kernel_size", offsetof(horopter_stereo_params, median_kernel_size), 4},
@@ -158,6 +160,37 @@ static void test_messages_name_c_fields(void) {
     CHECK(matcher == NULL);
     CHECK(names_c_field(cases[i].field));
   }
+}
+
+/* Each prefilter of the struct reaches the matcher: the three give three
+ * different maps of one random pair, and the normalized response's window
+ * matters. */
+static void test_pre_filter_types(void) {
+  enum { W = 96, H = 48 };
+  static unsigned char left[W * H], right[W * H];
+  make_pair(left, right, W, H, 6);
+  horopter_image l = {left, W, H, W, HOROPTER_U8C1}, r = {right, W, H, W, HOROPTER_U8C1};
+  static int16_t maps[4][W * H];
+  const int types[4] = {HOROPTER_PREFILTER_NORMALIZED_RESPONSE, HOROPTER_PREFILTER_XSOBEL,
+                        HOROPTER_PREFILTER_NONE, HOROPTER_PREFILTER_NORMALIZED_RESPONSE};
+  for (int k = 0; k < 4; ++k) {
+    horopter_stereo_params params;
+    horopter_stereo_params_default(&params);
+    CHECK(params.pre_filter_type == HOROPTER_PREFILTER_XSOBEL && params.pre_filter_size == 9);
+    params.num_disparities = 32;
+    params.pre_filter_type = types[k];
+    if (k == 3) params.pre_filter_size = 21;
+    horopter_matcher* matcher = NULL;
+    CHECK(horopter_matcher_create(&params, "scalar", 1, &matcher) == HOROPTER_OK);
+    CHECK(horopter_matcher_compute(matcher, &l, &r) == HOROPTER_OK);
+    horopter_image d;
+    CHECK(horopter_matcher_disparity(matcher, &d) == HOROPTER_OK);
+    for (int y = 0; y < H; ++y)
+      memcpy(maps[k] + y * W, (const char*)d.data + (ptrdiff_t)y * d.stride_bytes, W * 2);
+    horopter_matcher_destroy(matcher);
+  }
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) CHECK(memcmp(maps[a], maps[b], sizeof maps[a]) != 0);
 }
 
 static void test_bad_input(void) {
@@ -332,6 +365,7 @@ int main(void) {
   test_known_shift();
   test_bad_input();
   test_messages_name_c_fields();
+  test_pre_filter_types();
   test_run();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
