@@ -120,7 +120,7 @@ constexpr CommandOption kOptions[] = {
      .min = 0,
      .max = 10000,
      .unit = "ms",
-     .fallback = "15",
+     .fallbackOf = [] { return defaultText(CaptureOptions{}.maxSkewMs); },
      .help = "two cameras: most time between paired frames"},
     {.kind = OptionKind::Heading,
      .flag = "Rectification and zone (sources other than synthetic, which knows its rig)"},
@@ -135,7 +135,7 @@ constexpr CommandOption kOptions[] = {
      .value = "M",
      .min = 1e-6,
      .max = 1e6,
-     .fallback = "1.5",
+     .fallbackOf = [] { return defaultText(ZoneOptions{}.fixationDistanceM); },
      .help = "with --calib: fixation distance straight ahead, in the calibration's unit"},
     kFixationDisparityOption,
     kFocalPxOption,
@@ -177,7 +177,11 @@ constexpr CommandOption kOptions[] = {
      .value = "K",
      .min = 1,
      .max = 64,
-     .fallback = "3",
+     .fallbackOf =
+         [] {
+           static const PipelineConfig defaults;
+           return defaultText(defaults.inFlight);
+         },
      .help = "frames in flight; offline, a frame counts from the start of its capture (1: one "
              "frame at a time; 3: frame N + 2 is captured while N + 1 and N are in the stages; "
              "with more than one, the synthetic scene renders on the capture thread alone)"},

@@ -91,9 +91,12 @@ void checkTable(std::span<const CommandOption> table) {
           throw std::logic_error(std::string("option ") + name + " is declared twice");
     if (o.kind == OptionKind::Choice && !*o.choices)
       throw std::logic_error(std::string("option ") + o.flag + " has no choices");
-    if (!*o.fallback || !takesValue(o)) continue;
+    if (*o.fallback && o.fallbackOf)
+      throw std::logic_error(std::string("option ") + o.flag + " has two defaults");
+    const std::string fallback = fallbackText(o);
+    if (fallback.empty() || !takesValue(o)) continue;
     try {
-      check(o, o.fallback);
+      check(o, fallback);
     } catch (const UsageError& e) {
       throw std::logic_error(std::string("the default of ") + o.flag +
                              " is not one of its values: " + e.what());
@@ -141,7 +144,7 @@ const CommandOption& CommandOptions::entry(const std::string& flag,
 std::optional<std::string> CommandOptions::raw(const CommandOption& o) const {
   for (const auto& [flag, text] : values_)
     if (flag == o.flag) return text;
-  if (*o.fallback) return std::string(o.fallback);
+  if (const std::string fallback = fallbackText(o); !fallback.empty()) return fallback;
   return std::nullopt;
 }
 
@@ -211,10 +214,21 @@ std::string commandOptionsHelp(std::span<const CommandOption> table) {
     else if (o.kind == OptionKind::Choice)
       text << "; " << choiceText(o);
     if (*o.unit) text << " " << o.unit;
-    if (*o.fallback) text << " (default " << o.fallback << ")";
+    if (const std::string fallback = fallbackText(o); !fallback.empty())
+      text << " (default " << fallback << ")";
     out += helpEntry(name.str(), text.str());
   }
   return out;
+}
+
+std::string defaultText(double value) {
+  std::ostringstream text;
+  text << value;  // the shortest form, up to 6 significant digits
+  return text.str();
+}
+
+std::string fallbackText(const CommandOption& o) {
+  return o.fallbackOf ? o.fallbackOf() : std::string(o.fallback);
 }
 
 std::vector<std::string> commandOptionFlags(std::span<const CommandOption> table) {

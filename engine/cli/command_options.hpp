@@ -34,9 +34,19 @@ struct CommandOption {
   double min = 0, max = 0;    // Integer, Number: the allowed range, inclusive
   const char* unit = "";      // "s", "px", "" (a count)
   const char* fallback = "";  // the default, as it would be typed; "" = none (absent)
-  const char* choices = "";   // Choice: the allowed values, comma-separated
-  const char* help = "";      // one line; wrapped by --help
+  // Or the default read from the library struct that owns it, so that it is
+  // not restated here: e.g. [] { return defaultText(MovementModelParams{}.stay); }.
+  std::string (*fallbackOf)() = nullptr;
+  const char* choices = "";  // Choice: the allowed values, comma-separated
+  const char* help = "";     // one line; wrapped by --help
 };
+
+// A struct member's default as a table's fallback text ("0.97", "15", "3").
+std::string defaultText(double value);
+
+// The default of an option as it would be typed: fallbackOf's or fallback's;
+// "" when it has none.
+std::string fallbackText(const CommandOption& o);
 
 // The table's flags, taken out of `args` and checked: numbers parse strictly
 // within their range, a choice must be one of its values. Every error is a

@@ -133,6 +133,43 @@ TEST(CommandOptions, AMalformedTableIsAProgrammingError) {
   EXPECT_NO_THROW(CommandOptions(args, kTable));
 }
 
+// A default read from the struct that owns it (fallbackOf) is parsed,
+// checked and listed like one written in the table.
+struct Owner {
+  double rate = 12.5;
+};
+
+TEST(CommandOptions, ADefaultReadFromItsStructActsAsTheTablesOwn) {
+  constexpr CommandOption kFromStruct[] = {{.kind = OptionKind::Number,
+                                            .flag = "--rate",
+                                            .value = "R",
+                                            .min = 0,
+                                            .max = 100,
+                                            .fallbackOf = [] { return defaultText(Owner{}.rate); },
+                                            .help = "a rate"}};
+  Line line({});
+  Args args = line.args();
+  const CommandOptions o(args, kFromStruct);
+  EXPECT_EQ(o.number("--rate"), 12.5);
+  EXPECT_NE(commandOptionsHelp(kFromStruct).find("(default 12.5)"), std::string::npos);
+  constexpr CommandOption kOutOfRange[] = {
+      {.kind = OptionKind::Number,
+       .flag = "--rate",
+       .value = "R",
+       .min = 0,
+       .max = 10,
+       .fallbackOf = [] { return defaultText(Owner{}.rate); }}};
+  constexpr CommandOption kTwoDefaults[] = {{.kind = OptionKind::Number,
+                                             .flag = "--rate",
+                                             .value = "R",
+                                             .min = 0,
+                                             .max = 100,
+                                             .fallback = "1",
+                                             .fallbackOf = [] { return std::string("2"); }}};
+  EXPECT_THROW(CommandOptions(args, kOutOfRange), std::logic_error);
+  EXPECT_THROW(CommandOptions(args, kTwoDefaults), std::logic_error);
+}
+
 TEST(CommandOptions, HelpListsEveryFlagWithItsRangeAndDefault) {
   const std::string help = commandOptionsHelp(kTable);
   EXPECT_NE(help.find("Input:\n"), std::string::npos);
