@@ -40,11 +40,14 @@ TEST(ImageFiles, HeaderSizeOfEveryFormatOpenCvWrites) {
 TEST(ImageFiles, HeaderSizeSkipsJpegSegmentsBeforeTheFrame) {
   // An EXIF-like APP1 segment of 3 000 bytes between SOI and the frame.
   const std::vector<std::uint8_t> jpeg = encoded(".jpg", {23, 17}, CV_8UC3);
-  std::vector<std::uint8_t> withApp1(jpeg.begin(), jpeg.begin() + 2);
   const std::size_t length = 3000;
-  withApp1.insert(withApp1.end(), {0xFF, 0xE1, static_cast<std::uint8_t>(length >> 8),
-                                   static_cast<std::uint8_t>(length & 0xFF)});
-  withApp1.insert(withApp1.end(), length - 2, 0x00);
+  std::vector<std::uint8_t> withApp1 = {jpeg[0],
+                                        jpeg[1],
+                                        0xFF,
+                                        0xE1,
+                                        static_cast<std::uint8_t>(length >> 8),
+                                        static_cast<std::uint8_t>(length & 0xFF)};
+  withApp1.resize(withApp1.size() + length - 2, 0x00);
   withApp1.insert(withApp1.end(), jpeg.begin() + 2, jpeg.end());
   EXPECT_EQ(imageHeaderSize(withApp1), cv::Size(23, 17));
 }
