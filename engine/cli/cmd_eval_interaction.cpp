@@ -109,14 +109,7 @@ constexpr CommandOption kOptions[] = {
     kTrialScopeOption,
     kTrialThreadsOption,
     kBackendOption,
-    {.kind = OptionKind::Integer,
-     .flag = "--jobs",
-     .value = "N",
-     .min = 1,
-     .max = 64,
-     .fallback = "1",
-     .help = "trials run N at a time; the rates do not depend on it, but fps and e2e fps are "
-             "then measured with the trials competing for the cores"},
+    kTrialJobsOption,
     {.kind = OptionKind::Switch,
      .flag = "--diagnose",
      .help = "list every trial that lost more than one movement with the first cause that "

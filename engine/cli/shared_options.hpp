@@ -32,6 +32,18 @@ inline constexpr CommandOption kTrialThreadsOption = {.kind = OptionKind::Intege
                                                       .fallback = "1",
                                                       .help = "threads of the disparity stage"};
 
+// Trials run N at a time (eval-tracking, eval-interaction).
+inline constexpr CommandOption kTrialJobsOption = {
+    .kind = OptionKind::Integer,
+    .flag = "--jobs",
+    .value = "N",
+    .min = 1,
+    .max = 64,
+    .fallback = "1",
+    .help =
+        "trials run N at a time; the scores do not depend on it, the times do (the trials "
+        "compete for the cores)"};
+
 // How head control turns the 3-D head point into pan and tilt.
 inline constexpr CommandOption kHeadFormulaOption = {
     .kind = OptionKind::Choice,
