@@ -16,7 +16,10 @@ std::vector<MatchSetting> matchSettings(bool withTarget) {
     for (const int numDisparities : kDisparityCounts)
       settings.push_back({size, numDisparities, kBlockSize});
   }
-  if (withTarget) settings.push_back(kTarget);
+  if (withTarget) {
+    settings.push_back(kTarget);
+    settings.push_back({{640, 480}, 64, kBlockSize, PreFilterType::NormalizedResponse});
+  }
   return settings;
 }
 
@@ -41,6 +44,7 @@ std::string matchTag(const MatchSetting& setting, int threads) {
   tag += std::to_string(setting.numDisparities);
   tag += "/w";
   tag += std::to_string(setting.blockSize);
+  if (setting.preFilter == PreFilterType::NormalizedResponse) tag += "/norm";
   tag += "/t";
   tag += std::to_string(threads);
   return tag;
@@ -50,6 +54,7 @@ StereoParams frontendParams(const MatchSetting& setting) {
   StereoParams params;
   params.numDisparities = setting.numDisparities;
   params.blockSize = setting.blockSize;
+  params.preFilterType = setting.preFilter;
   return params;
 }
 

@@ -23,6 +23,7 @@ struct MatchSetting {
   FrameSize size;
   int numDisparities = 0;
   int blockSize = 0;
+  PreFilterType preFilter = PreFilterType::XSobel;  // rows of another are tagged "/norm"
 };
 
 inline constexpr FrameSize kSizes[] = {{320, 240}, {640, 480}, {1280, 720}};
@@ -34,14 +35,16 @@ inline constexpr int kBlockSize = 9;
 inline constexpr int kThreadCounts[] = {1, 2};
 
 // Every size x disparity count at the standard block size; with
-// `withTarget`, also the issue-3 target 1280x720/d128/w15.
+// `withTarget`, also the issue-3 target 1280x720/d128/w15 and
+// 640x480/d64/w9 with StereoBM's normalized-response prefilter.
 std::vector<MatchSetting> matchSettings(bool withTarget);
 
 // The registered backends available on this machine, so that a new backend
 // gets its rows without touching the benches.
 std::vector<const Backend*> availableBackends();
 
-// Row-name pieces: "640x480" and "d64/w9/t1".
+// Row-name pieces: "640x480" and "d64/w9/t1" ("d64/w9/norm/t1" for the
+// normalized-response prefilter).
 std::string sizeTag(FrameSize size);
 std::string matchTag(const MatchSetting& setting, int threads);
 
