@@ -40,23 +40,33 @@ void writeImageFile(const std::string& path, const cv::Mat& image, const std::st
 }
 
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params) {
+  checkView(disparity, PixelType::S16C1, "disparity");
   const std::int16_t invalid = invalidDisparity(params);
-  const double lo = params.minDisparity * kDisparityScale;
-  const double hi = (params.minDisparity + params.numDisparities) * kDisparityScale;
-  cv::Mat level(disparity.height, disparity.width, CV_8UC1);
-  cv::Mat valid(disparity.height, disparity.width, CV_8UC1);
+  const int lo = params.minDisparity * kDisparityScale;
+  const int hi = (params.minDisparity + params.numDisparities) * kDisparityScale;
+  // One colour per disparity in [lo, hi] (those outside take the ends', as
+  // the level saturates): a table lookup per pixel, where a division and
+  // the colour map per pixel cost half the annotated view's time.
+  static const cv::Mat jet = [] {
+    cv::Mat ramp(1, 256, CV_8UC1), colours;
+    for (int i = 0; i < 256; ++i)
+      ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+    cv::applyColorMap(ramp, colours, cv::COLORMAP_JET);  // low = blue, high = red
+    return colours;
+  }();
+  std::vector<cv::Vec3b> colourOf(static_cast<std::size_t>(hi - lo + 1));
+  for (int v = lo; v <= hi; ++v)
+    colourOf[static_cast<std::size_t>(v - lo)] = jet.at<cv::Vec3b>(
+        0, cv::saturate_cast<std::uint8_t>(255.0 * (v - lo) / static_cast<double>(hi - lo)));
+  cv::Mat out(disparity.height, disparity.width, CV_8UC3);
   for (int y = 0; y < disparity.height; ++y) {
     const auto* d = disparity.row<std::int16_t>(y);
-    for (int x = 0; x < disparity.width; ++x) {
-      valid.at<std::uint8_t>(y, x) = d[x] != invalid ? 255 : 0;
-      level.at<std::uint8_t>(y, x) =
-          cv::saturate_cast<std::uint8_t>(255.0 * (d[x] - lo) / (hi - lo));
-    }
+    auto* o = out.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < disparity.width; ++x)
+      o[x] = d[x] == invalid
+                 ? cv::Vec3b(0, 0, 0)
+                 : colourOf[static_cast<std::size_t>(std::clamp<int>(d[x], lo, hi) - lo)];
   }
-  cv::Mat colour;
-  cv::applyColorMap(level, colour, cv::COLORMAP_JET);  // low = blue, high = red
-  cv::Mat out = cv::Mat::zeros(colour.size(), colour.type());
-  colour.copyTo(out, valid);
   return out;
 }
 

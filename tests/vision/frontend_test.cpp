@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "horopter/kernels/kernels.hpp"
 #include "horopter/vision/frontend.hpp"
@@ -489,6 +490,29 @@ TEST(Frontend, ColourViewGoesFromBlueToRed) {
   EXPECT_GT(near[2], far[2]) << "red";
   EXPECT_GT(far[0], near[0]) << "blue";
   EXPECT_EQ(colour.at<cv::Vec3b>(0, 2), cv::Vec3b(0, 0, 0)) << "invalid is black";
+}
+
+// The colour view is the JET map of the disparity's level in [lo, hi]
+// (saturated outside), black where invalid: every 16-bit value, against the
+// map applied pixel by pixel.
+TEST(Frontend, ColourViewIsTheJetMapOfEachDisparitysLevel) {
+  StereoParams p;
+  p.minDisparity = 3;
+  p.numDisparities = 48;
+  cv::Mat disparity(256, 256, CV_16SC1);
+  for (int i = 0; i < 65536; ++i)
+    disparity.at<std::int16_t>(i / 256, i % 256) = static_cast<std::int16_t>(i - 32768);
+  const cv::Mat colour = colorizeDisparity(viewOf(disparity), p);
+  const double lo = p.minDisparity * 16.0, hi = (p.minDisparity + p.numDisparities) * 16.0;
+  cv::Mat level(disparity.size(), CV_8UC1), expected;
+  for (int i = 0; i < 65536; ++i)
+    level.at<std::uint8_t>(i / 256, i % 256) = cv::saturate_cast<std::uint8_t>(
+        255.0 * (disparity.at<std::int16_t>(i / 256, i % 256) - lo) / (hi - lo));
+  cv::applyColorMap(level, expected, cv::COLORMAP_JET);
+  expected.setTo(cv::Scalar::all(0), disparity == invalidDisparity(p));
+  ASSERT_EQ(colour.size(), expected.size());
+  EXPECT_EQ(cv::norm(colour, expected, cv::NORM_INF), 0);
+  EXPECT_GT(cv::countNonZero(expected.reshape(1) != 0), 0) << "not all black";
 }
 
 // The colour scale: blue at its left end (the lowest disparity), red at its
