@@ -1,4 +1,4 @@
-// frameDigest: FNV-1a over what a frame's stages produced; see
+// frameDigest: FNV-1a (images a word at a time) over what a frame's stages produced; see
 // horopter/app/pipeline_builder.hpp.
 #include <cstdio>
 #include <cstring>
@@ -25,6 +25,20 @@ void mixValue(std::uint64_t& h, const T& value) {
   mix(h, &value, sizeof value);
 }
 
+// FNV-1a's step over 8-byte words, the tail byte by byte: a byte at a
+// time cost 3 % of the whole pipeline's instructions (the run digests
+// every frame). The digest only tells runs apart; it is not kept anywhere.
+void mixWords(std::uint64_t& h, const unsigned char* p, std::size_t bytes) {
+  std::size_t i = 0;
+  for (; i + 8 <= bytes; i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p + i, sizeof word);
+    h ^= word;
+    h *= kFnvPrime;
+  }
+  mix(h, p + i, bytes - i);
+}
+
 // Rows one by one: a view's padding is not part of the image.
 void mixImage(std::uint64_t& h, const cv::Mat& image) {
   mixValue(h, image.rows);
@@ -32,7 +46,7 @@ void mixImage(std::uint64_t& h, const cv::Mat& image) {
   mixValue(h, image.type());
   const std::size_t rowBytes = image.cols * image.elemSize();
   for (int y = 0; y < image.rows; ++y)
-    mix(h, image.ptr(y), rowBytes);
+    mixWords(h, image.ptr(y), rowBytes);
 }
 
 void mixPart(std::uint64_t& h, const PartState& part) {

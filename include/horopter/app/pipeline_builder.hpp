@@ -138,8 +138,9 @@ HOROPTER_API AssembledPipeline buildPipeline(const PipelineConfig& config,
                                              PipelineHooks hooks = {});
 
 // A digest of what a frame's stages produced: its index, disparity, mask
-// and the godfather's tracked parts (FNV-1a, 64 bits). Equal digests over a
-// run mean equal outputs; the parity tests compare them across front ends.
+// and the godfather's tracked parts (FNV-1a, 64 bits; images 8 bytes a
+// step). Equal digests over a run mean equal outputs; the parity tests
+// compare them across front ends.
 HOROPTER_API std::uint64_t frameDigest(const Frame& frame);
 // Frame digests folded in frame order.
 HOROPTER_API std::uint64_t foldDigest(std::uint64_t runDigest, std::uint64_t frameDigest);
