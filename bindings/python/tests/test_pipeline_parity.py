@@ -19,7 +19,20 @@ FRAMES, WIDTH, HEIGHT, SEED = 120, 320, 240, 7
 FIXATION_PX = 4
 
 
+# Each configuration's digest, once per module: several tests compare the
+# same runs (this file was the suite's longest test).
+_cli_digests = {}
+_c_digests = {}
+
+
 def cli_digest(cli, tmp_path, backend, in_flight, detect="region", source="synthetic"):
+    key = (backend, in_flight, detect, source)
+    if key not in _cli_digests:
+        _cli_digests[key] = _run_cli(cli, tmp_path, backend, in_flight, detect, source)
+    return _cli_digests[key]
+
+
+def _run_cli(cli, tmp_path, backend, in_flight, detect, source):
     fixation = ["--fixation-disparity", str(FIXATION_PX)] if source.startswith("dir:") else []
     out = subprocess.run(
         [cli, "run", "--source", source, *fixation, "--frames", str(FRAMES), "--size", f"{WIDTH}x{HEIGHT}",
@@ -47,6 +60,13 @@ def c_digest(source, backend, in_flight, detect="region"):
     tool = os.environ.get("HOROPTER_C_RUN")
     if not tool or not os.path.exists(tool):
         pytest.skip("the C API's run tool is not built here (set HOROPTER_C_RUN)")
+    key = (source, backend, in_flight, detect)
+    if key not in _c_digests:
+        _c_digests[key] = _run_c(tool, source, backend, in_flight, detect)
+    return _c_digests[key]
+
+
+def _run_c(tool, source, backend, in_flight, detect):
     out = subprocess.run([tool, source, str(FRAMES), detect, backend, str(in_flight),
                           str(FIXATION_PX)],
                          check=True, capture_output=True, text=True)
