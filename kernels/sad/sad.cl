@@ -24,7 +24,11 @@
 //     gcol (global scratch, [column][checked disparity]) and ghsum (private)
 //     slide as colsum and hsum do, for the disparities minD - (n + 1) *
 //     guardStep; columns whose right pixel lies past the image stay 0 and
-//     the pixels whose window would reach them skip that disparity.
+//     the pixels whose window would reach them skip that disparity. Their
+//     costs join the right view's candidates before the range's (a left
+//     pixel x reaches right pixel x - g before x - d for every d in the
+//     range), stored as index min(g - minD, -2) (-2: g = minD - 1, written
+//     as minD - 2, as the reference); INT_MIN marks "none".
 //   Costs are exact int32 sums (at most 255 * 255^2 < 2^31); the uniqueness
 //   limit and the sub-pixel fit use 64-bit longs as the reference. Rows of
 //   the range outside the matching region are filled with the invalid
@@ -146,7 +150,7 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
     }
     for (int xr = x0 - maxD; xr < x1 - minD; ++xr) {
       rbestCost[xr] = INT_MAX;
-      rbestD[xr] = -1;
+      rbestD[xr] = INT_MIN;
     }
 
     __global short* outRow = disparity + y * outStride;
@@ -170,6 +174,18 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
       for (int k = 0; k < numD; ++k)
         best = min(best, hsum[k] == bestCost ? k : numD);
 
+      // The guard's right candidates first (smaller d), for the right pixels
+      // that have a winner (x - g < x1 - minD) and where g counts.
+      for (int n = guardCount - 1; n >= 0; --n) {
+        const int g = minD - (n + 1) * guardStep;
+        const int xr = x - g;
+        if (xr >= x1 - minD || x - g + radius >= width) continue;
+        const int c = ghsum[n];
+        if (c < rbestCost[xr]) {
+          rbestCost[xr] = c;
+          rbestD[xr] = min(g - minD, -2);
+        }
+      }
       // The right view's candidates: right pixel x - d gets C(x, d).
       __global int* rc = rbestCost + x - minD;
       __global int* rd = rbestD + x - minD;
@@ -218,7 +234,7 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
 
     __global short* winRow = winnerRight + y * outStride;
     for (int xr = x0 - maxD; xr < x1 - minD; ++xr) {
-      if (rbestD[xr] >= 0) winRow[xr] = (short)(minD + rbestD[xr]);
+      if (rbestD[xr] != INT_MIN) winRow[xr] = (short)(minD + rbestD[xr]);
     }
   }
 }

@@ -66,7 +66,11 @@
 //      into the least per pixel, 65535 where none counts. finishLeft then
 //      invalidates a pixel whose least is <= its uniqueness limit (the
 //      winner's cost when the test is off), unsigned in 16 bits: these costs
-//      obey the same bound.
+//      obey the same bound. The window sums stay in one row per checked
+//      disparity (65535 outside the pixels where it counts, and on wide
+//      edges), so that decideRight reads right pixel xr's candidates at
+//      entries xr + g - x0, in increasing g, and takes the least where it
+//      is <= the range's least.
 //
 //   Tails: the last block of pixels is padded with "no cost" lanes; image
 //   rows are read only within [0, width), and outputs are written only in the
@@ -336,7 +340,12 @@ class Matcher {
         guards_(guardCount(params, guard)),
         guardStride_((cols_ + 2 * kChunk) / kLanes * kLanes),
         guardColumns_(static_cast<std::size_t>(guards_) * guardStride_),
-        guardLeast_(guards_ > 0 ? padded_ + kLanes : 0) {
+        guardLeast_(guards_ > 0 ? padded_ + kLanes : 0),
+        guardEdge_((minD_ + count_ - 1 - guard.lowest + 2 * kLanes) / kLanes * kLanes),
+        guardRowLen_(guardEdge_ + padded_ + kChunk + 2 * kLanes),
+        guardCosts_(static_cast<std::size_t>(guards_) * guardRowLen_) {
+    std::fill_n(guardCosts_.get(), static_cast<std::size_t>(guards_) * guardRowLen_,
+                std::uint16_t{0xFFFF});
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -441,6 +450,11 @@ class Matcher {
   HOROPTER_AVX2_TARGET int guardPixelEnd(int n) const {
     return std::min(x1_, width_ - r_ + guardDisparity(n)) - x0_;
   }
+  // Window costs of checked disparity n for pixels i = x - x0 (65535 where
+  // it does not count); entries from -guardEdge_.
+  HOROPTER_AVX2_TARGET std::uint16_t* guardCosts(int n) const {
+    return guardCosts_.get() + static_cast<std::size_t>(n) * guardRowLen_ + guardEdge_;
+  }
   // Column sums of checked disparity n, entry x - xa (zero past the end).
   HOROPTER_AVX2_TARGET std::uint16_t* guardColumn(int n) const {
     return guardColumns_.get() + static_cast<std::size_t>(n) * guardStride_;
@@ -484,8 +498,8 @@ class Matcher {
     }
   }
 
-  // The current row's least window cost over the checked disparities, per
-  // pixel i (65535 where none counts): pixel i's window is columns
+  // The current row's window costs of every checked disparity, and their
+  // least per pixel i (65535 where none counts): pixel i's window is columns
   // x0 + i - r .. x0 + i + r, entries i .. i + 2r of a guard column.
   HOROPTER_AVX2_TARGET void guardRow() {
     std::uint16_t* least = guardLeast_.get();
@@ -493,6 +507,7 @@ class Matcher {
     const int window = 2 * r_ + 1;
     for (int n = 0; n < guards_; ++n) {
       const std::uint16_t* col = guardColumn(n);
+      std::uint16_t* out = guardCosts(n);
       const int end = guardPixelEnd(n);
       for (int i = 0; i < end; i += kLanes) {
         __m256i sum = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(col + i));
@@ -501,12 +516,15 @@ class Matcher {
                                  _mm256_loadu_si256(reinterpret_cast<const __m256i*>(col + i + c)));
         auto* p = reinterpret_cast<__m256i*>(least + i);
         if (i + kLanes <= end) {
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), sum);
           _mm256_storeu_si256(p, _mm256_min_epu16(_mm256_loadu_si256(p), sum));
         } else {
           alignas(32) std::uint16_t lanes[kLanes];
           _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), sum);
-          for (int j = 0; i + j < end; ++j)
+          for (int j = 0; i + j < end; ++j) {
+            out[i + j] = lanes[j];
             least[i + j] = std::min(least[i + j], lanes[j]);
+          }
         }
       }
     }
@@ -970,6 +988,28 @@ class Matcher {
     const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
     for (int n = 0; n < kBlocks; ++n)
       d[n] = _mm256_add_epi16(d[n], _mm256_and_si256(best[n], lowBits));
+    if (guards_ > 0) {
+      // The guard's candidates, in increasing g: a strict < (unsigned, by
+      // the bias) keeps the smallest g; it wins where <= the range's least.
+      const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+      for (int b = 0; b < kBlocks; ++b) {
+        const int xr = xr0 + b * kLanes;
+        const __m256i least = _mm256_srli_epi16(_mm256_xor_si256(best[b], bias16), kShift);
+        __m256i guardLeast = _mm256_set1_epi16(-1), guardD = _mm256_setzero_si256();
+        for (int n = guards_ - 1; n >= 0; --n) {
+          const int g = guardDisparity(n);
+          const __m256i c =
+              _mm256_loadu_si256(reinterpret_cast<const __m256i*>(guardCosts(n) + (xr + g - x0_)));
+          const __m256i better =
+              _mm256_cmpgt_epi16(_mm256_xor_si256(guardLeast, bias16), _mm256_xor_si256(c, bias16));
+          guardLeast = _mm256_blendv_epi8(guardLeast, c, better);
+          guardD = _mm256_blendv_epi8(
+              guardD, _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))), better);
+        }
+        const __m256i wins = _mm256_cmpeq_epi16(_mm256_max_epu16(guardLeast, least), least);
+        d[b] = _mm256_blendv_epi8(d[b], guardD, wins);
+      }
+    }
     for (int n = 0; n < kBlocks; ++n) {
       const int xr = xr0 + n * kLanes;
       if (xr + kLanes <= xrHigh + 1) {
@@ -1007,6 +1047,8 @@ class Matcher {
   const int guardStep_, guards_, guardStride_;           // guards_: checked disparities
   AlignedArray<std::uint16_t> guardColumns_;             // [n][x - xa]: column sums
   AlignedArray<std::uint16_t> guardLeast_;               // [i]: least window cost (65535: none)
+  const int guardEdge_, guardRowLen_;
+  AlignedArray<std::uint16_t> guardCosts_;  // [n][guardEdge + i]: window costs (65535: none)
 };
 
 }  // namespace

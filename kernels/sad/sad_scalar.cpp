@@ -45,7 +45,7 @@
 //   to the smaller d) or failed the winner's uniqueness test over the full
 //   range. Unlike the full range's test, a checked disparity next to the
 //   winner (g_1 = minDisparity - 1 with step 1, b = minDisparity) counts as
-//   well. The right winners and the sub-pixel step do not change.
+//   well. The sub-pixel step does not change.
 //
 //   Texture, uniqueness and the guard are checked in that order; the result
 //   is the same whichever fails first.
@@ -54,6 +54,15 @@
 //   right pixel (xr, y), the d of least C(xr + d, y, d) over the d whose left
 //   pixel xr + d lies in the region's columns; ties go to the smallest d;
 //   minDisparity - 1 where no d qualifies. Texture and uniqueness play no part.
+//   With the guard, a right pixel that has a winner in the range also weighs
+//   the checked g_k whose left pixel xr + g_k lies in the region's columns
+//   (it counts there: xr + r <= W - 1 holds for these right pixels): if the
+//   least of their C(xr + g_k, y, g_k) is <= the range's least, the winner
+//   is the smallest g_k holding it (a smaller d wins ties), written as
+//   min(g_k, minDisparity - 2) so that g_1 = minDisparity - 1 (step 1) does
+//   not read as "no winner". The left-right check then rejects a left pixel
+//   whose right partner matches better below the range, as the full range's
+//   would (for disp12MaxDiff <= 1 exactly, except at the range's bottom).
 //
 //   Only the output rows in `rows` are written (both maps); every row's result
 //   depends on the input rows of its window alone, so stripes of a frame give
@@ -194,6 +203,7 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   std::vector<std::int32_t> costs(static_cast<std::size_t>(count) * width);  // [x][k]
   std::vector<std::int32_t> rightBestCost(width);
   std::vector<std::int32_t> guardLeast(width);
+  std::vector<std::int32_t> guardCost(static_cast<std::size_t>(guards) * width);  // [n][x]
   for (int y = region.y0; y < region.y1; ++y) {
     if (y > region.y0) {
       addRow(y + r, +1);
@@ -226,6 +236,7 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
           sum += col[x + r] - col[x - r - 1];
         }
         guardLeast[x] = std::min(guardLeast[x], sum);
+        guardCost[static_cast<std::size_t>(n) * width + x] = sum;
       }
     }
 
@@ -253,6 +264,26 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
           outWinner[xr] = static_cast<std::int16_t>(minD + k);
         }
       }
+    }
+
+    // The guard's candidates for the right pixels that have a winner: the
+    // checked disparities in increasing g (n decreasing), a strict < keeping
+    // the smallest g, then <= against the range's least (g is smaller).
+    const int maxD = minD + count - 1;
+    for (int xr = region.x0 - maxD; xr < region.x1 - minD && guards > 0; ++xr) {
+      std::int32_t least = std::numeric_limits<std::int32_t>::max();
+      int leastD = 0;
+      for (int n = guards - 1; n >= 0; --n) {
+        const int x = xr + guardDisparity(n);
+        if (x < region.x0 || x >= guardPixelEnd(n)) continue;
+        const std::int32_t c = guardCost[static_cast<std::size_t>(n) * width + x];
+        if (c < least) {
+          least = c;
+          leastD = guardDisparity(n);
+        }
+      }
+      if (least <= rightBestCost[xr])
+        outWinner[xr] = static_cast<std::int16_t>(std::min(leastD, minD - 2));
     }
   }
 }

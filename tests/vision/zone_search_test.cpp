@@ -17,11 +17,13 @@
 namespace horopter::test {
 namespace {
 
+// Zone search on, without the guard below the range unless asked.
 ZoneSearch on(int margin = 4, int maxDisparity = 0) {
   ZoneSearch z;
   z.enabled = 1;
   z.marginPx = margin;
   z.maxDisparity = maxDisparity;
+  z.guardStep = 0;
   return z;
 }
 

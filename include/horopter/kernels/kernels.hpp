@@ -64,8 +64,10 @@ HOROPTER_API void matchBlocks(const ConstImageView& left, const ConstImageView& 
 // minDisparity - k * step, k = 1, 2, ..., down to `lowest` (the configured
 // range's bottom), each costed as the range's are; a pixel whose winner one
 // of them would have beaten, or would have failed the winner's uniqueness
-// test, is invalid. kernels/sad/sad_scalar.cpp states the exact rule. step 0
-// (the default): off.
+// test, is invalid, and a right pixel whose best match one of them is gets
+// it as its winner (so that the left-right check sees it).
+// kernels/sad/sad_scalar.cpp states the exact rules. step 0 (the default):
+// off.
 struct HOROPTER_API BelowRangeGuard {
   int step = 0;    // px between checked disparities; 0..kMaxGuardStep
   int lowest = 0;  // the smallest disparity that may be checked, px

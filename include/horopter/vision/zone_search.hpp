@@ -30,9 +30,10 @@ namespace horopter {
 // numDisparities - 1 px (numDisparities a positive multiple of 16), and the
 // guard below them: with guardStep > 0 the matcher also costs every
 // guardStep-th disparity below minDisparity, down to the configured range's
-// bottom, and invalidates a pixel whose winner one of them would have
-// beaten or failed the uniqueness test for (kernels.hpp's BelowRangeGuard;
-// kernels/sad/sad_scalar.cpp states the rule). A range that starts at the
+// bottom, invalidates a pixel whose winner one of them would have beaten or
+// failed the uniqueness test for, and lets them win the right view's pixels
+// for the left-right check (kernels.hpp's BelowRangeGuard;
+// kernels/sad/sad_scalar.cpp states the rules). A range that starts at the
 // configured bottom has nothing below to check.
 struct HOROPTER_API SearchRange {
   int minDisparity = 0;
@@ -69,8 +70,10 @@ struct HOROPTER_API ZoneSearch {
   // (minDisparity + numDisparities - 1). Above it: nearer the cameras.
   int maxDisparity = 0;
   // The guard below the range (SearchRange::guardStep), px between the
-  // disparities it checks; 0: off.
-  int guardStep = 0;
+  // disparities it checks; 0: off. 1 (every disparity below the range, each
+  // a box-filtered cost without decisions): sparser steps miss the narrow
+  // cost minima of fine texture (kernels/README.md, "Zone-limited ranges").
+  int guardStep = 1;
 };
 
 // Every option of ZoneSearch, declared once (flag, unit, range, help).
