@@ -18,8 +18,9 @@ const NumberOption<ZoneSearch> kZoneSearchOptions[] = {
      "largest disparity searched with --zone-search 1; 0: the full range's",
      &ZoneSearch::maxDisparity},
     {"zoneGuardStep", "--zone-guard-step", "px", 0, 64,
-     "with --zone-search 1, check every Nth disparity below the range and drop a pixel whose "
-     "match one of them beats (or ties within the uniqueness margin); 0: off",
+     "with --zone-search 1, also cost every Nth disparity below the range: a pixel whose match "
+     "one of them beats (or ties within the uniqueness margin) is dropped, and they take part "
+     "in the left-right check; 0: off",
      &ZoneSearch::guardStep},
 };
 
