@@ -1,10 +1,15 @@
-// frontend/<backend>/640x480/d64/w9/t<n>/scene and .../zone: the whole front
-// end (as the frontend/ rows) on a frame of the synthetic scene at its
-// default rig and fixation, with the thresholds `horopter run` computes:
-// over the full range (scene) and zone-limited (zone: each frame searches
-// zoneSearchRange() of those thresholds, `run --zone-search 1`). The ratio
-// of the two is what zone-limited matching saves; `horopter eval-zone`
-// measures what it changes in the mask.
+// frontend/<backend>/640x480/d64/w9/t<n>/scene, .../zone and .../zone_guard:
+// the whole front end (as the frontend/ rows) on a frame of the synthetic
+// scene at its default rig and fixation, with the thresholds `horopter run`
+// computes: over the full range (scene), zone-limited (zone: each frame
+// searches zoneSearchRange() of those thresholds, `run --zone-search 1
+// --zone-guard-step 0`) and zone-limited with the guard below the range at
+// its default step (zone_guard, `run --zone-search 1`). The ratios to scene
+// are what zone-limited matching saves; `horopter eval-zone` measures what
+// it changes in the mask.
+#include <algorithm>
+#include <span>
+
 #include <opencv2/imgproc.hpp>
 
 #include "bench_support.hpp"
@@ -48,11 +53,14 @@ const SceneFrame& sceneFrame() {
   return frame;
 }
 
-void runSceneFrontend(benchmark::State& state, const Backend& backend, int threads, bool zone) {
+enum class Search { Full, Zone, ZoneGuard };
+
+void runSceneFrontend(benchmark::State& state, const Backend& backend, int threads, Search mode) {
   const SceneFrame& f = sceneFrame();
   const StereoParams params;  // 64 disparities, block 9: what `horopter run` uses
-  ZoneSearch search;
-  search.enabled = zone ? 1 : 0;
+  ZoneSearch search;          // the guard at its default step
+  search.enabled = mode != Search::Full ? 1 : 0;
+  if (mode == Search::Zone) search.guardStep = 0;
   const SearchRange range = zoneSearchRange(params, f.thresholds, search);
   StereoFrontend frontend(params, MedianParams{}, backend, threads);
   for (auto _ : state) {
@@ -60,6 +68,25 @@ void runSceneFrontend(benchmark::State& state, const Backend& backend, int threa
     frontend.computeMask(f.thresholds, viewOf(f.leftColour));
   }
   state.counters["disparities"] = range.numDisparities;
+  state.counters["guard_checked"] =
+      range.guardStep > 0 ? (range.minDisparity - params.minDisparity) / range.guardStep : 0;
+  if (mode != Search::Full) {
+    // What per-column search bottoms would search (not implemented: a
+    // figure for the speed goal): the mean over 128-pixel tiles (the AVX2
+    // matcher's) and over single columns of the range zoneSearchRange()
+    // gives for their thresholds alone.
+    const std::span<const std::int16_t> all(f.thresholds);
+    double tiles = 0, columns = 0;
+    int tileCount = 0;
+    for (std::size_t x = 0; x < all.size(); x += 128, ++tileCount)
+      tiles += zoneSearchRange(params, all.subspan(x, std::min<std::size_t>(128, all.size() - x)),
+                               search)
+                   .numDisparities;
+    for (std::size_t x = 0; x < all.size(); ++x)
+      columns += zoneSearchRange(params, all.subspan(x, 1), search).numDisparities;
+    state.counters["tile_disparities"] = tiles / tileCount;
+    state.counters["column_disparities"] = columns / static_cast<double>(all.size());
+  }
   setPixelCounters(state, FrameSize{f.left.cols, f.left.rows});
 }
 
@@ -69,12 +96,15 @@ void registerZoneRows() {
   for (const Backend* backend : availableBackends()) {
     if (backend->name.rfind("opencl", 0) == 0) continue;  // the CPU front end's rows
     for (const int threads : kThreadCounts) {
-      for (const bool zone : {false, true}) {
-        const std::string name = "frontend/" + backend->name + "/640x480/d64/w9/t" +
-                                 std::to_string(threads) + (zone ? "/zone" : "/scene");
+      for (const Search mode : {Search::Full, Search::Zone, Search::ZoneGuard}) {
+        const char* suffix = mode == Search::Full   ? "/scene"
+                             : mode == Search::Zone ? "/zone"
+                                                    : "/zone_guard";
+        const std::string name =
+            "frontend/" + backend->name + "/640x480/d64/w9/t" + std::to_string(threads) + suffix;
         auto* row = measure(benchmark::RegisterBenchmark(
-            name.c_str(), [backend, threads, zone](benchmark::State& state) {
-              runSceneFrontend(state, *backend, threads, zone);
+            name.c_str(), [backend, threads, mode](benchmark::State& state) {
+              runSceneFrontend(state, *backend, threads, mode);
             }));
         if (threads > 1) row->UseRealTime();
       }

@@ -34,7 +34,11 @@ const char* kHelp =
     "the largest disparity wanted: `run --zone-search 1`), and prints how far the zone\n"
     "mask moves: the zone-limited mask's precision and recall against the full-range\n"
     "mask, and both masks' against the true zone where it is known, with the mean number\n"
-    "of disparities searched (the bench rows frontend/*/scene and /zone measure speed).\n\n"
+    "of disparities searched (the bench rows frontend/*/scene and /zone measure speed).\n"
+    "With the guard below the range on (--zone-guard-step N, default 1; 0: off) the\n"
+    "zone-limited front end also checks every Nth disparity below its range; the command\n"
+    "then also runs the range without the guard and prints both masks, and how many\n"
+    "disparities the guard checked.\n\n"
     "Synthetic (default): eval-tracking's closed-loop trials S .. S+N-1 (default 10240, 4\n"
     "  trials of 300 frames; the head verges on the person); the truth is the scene's.\n"
     "Real pair: a rectified pair; the zone's fixation is --fixation-disparity px on the\n"
@@ -193,12 +197,19 @@ int runEvalZone(Args& args) {
   }
 
   const double searched = result.searchedDisparities / std::max(1, result.frames);
+  const double checked = result.checkedDisparities / std::max(1, result.frames);
   if (json) {
     detail::Json out{{"input", what},
                      {"frames", result.frames},
                      {"full_disparities", stereo.numDisparities},
                      {"mean_searched_disparities", detail::jsonNumber(searched, 3)},
+                     {"zone_guard_step", zone.guardStep},
                      {"zone_vs_full", agreementJson(result.zoneVsFull)}};
+    if (result.hasGuard) {
+      out["mean_guard_checked_disparities"] = detail::jsonNumber(checked, 3);
+      out["unguarded_vs_full"] = agreementJson(result.unguardedVsFull);
+      if (result.hasTruth) out["unguarded_vs_truth"] = agreementJson(result.unguardedVsTruth);
+    }
     if (result.hasTruth) {
       out["full_vs_truth"] = agreementJson(result.fullVsTruth);
       out["zone_vs_truth"] = agreementJson(result.zoneVsTruth);
@@ -207,13 +218,22 @@ int runEvalZone(Args& args) {
     return 0;
   }
   // No times here: the bench rows frontend/*/scene and /zone measure speed.
-  std::printf("%s\n%d frame(s); disparities searched: %.1f of %d on average (backend %s)\n\n",
+  std::printf("%s\n%d frame(s); disparities searched: %.1f of %d on average (backend %s)\n",
               what.c_str(), result.frames, searched, stereo.numDisparities, backend.name.c_str());
-  std::printf("%-34s %11s %11s\n", "zone mask", "precision", "recall");
-  printAgreement("zone-limited vs full range", result.zoneVsFull);
+  if (result.hasGuard)
+    std::printf("guard below the range: every %d px, %.1f disparities checked on average\n",
+                zone.guardStep, checked);
+  else
+    std::printf("guard below the range: off (--zone-guard-step 0)\n");
+  std::printf("\n%-34s %11s %11s\n", "zone mask", "precision", "recall");
+  if (result.hasGuard) printAgreement("zone-limited, no guard vs full", result.unguardedVsFull);
+  printAgreement(result.hasGuard ? "zone-limited + guard vs full" : "zone-limited vs full range",
+                 result.zoneVsFull);
   if (result.hasTruth) {
     printAgreement("full range vs true zone", result.fullVsTruth);
-    printAgreement("zone-limited vs true zone", result.zoneVsTruth);
+    if (result.hasGuard) printAgreement("zone-limited, no guard vs true", result.unguardedVsTruth);
+    printAgreement(result.hasGuard ? "zone-limited + guard vs true" : "zone-limited vs true zone",
+                   result.zoneVsTruth);
   }
   return 0;
 }

@@ -47,8 +47,10 @@ void MaskAgreement::add(const cv::Mat& test, const cv::Mat& reference, const cv:
 struct ZoneEvaluator::Fronts {
   Fronts(const StereoParams& stereo, const MedianParams& median, const Backend& backend,
          int threads)
-      : full(stereo, median, backend, threads), zone(stereo, median, backend, threads) {}
-  StereoFrontend full, zone;
+      : full(stereo, median, backend, threads),
+        zone(stereo, median, backend, threads),
+        unguarded(stereo, median, backend, threads) {}
+  StereoFrontend full, zone, unguarded;
 };
 
 ZoneEvaluator::ZoneEvaluator(const StereoParams& stereo, const MedianParams& median,
@@ -78,6 +80,18 @@ void ZoneEvaluator::addFrame(const cv::Mat& leftGrey, const cv::Mat& rightGrey,
     result.zoneVsTruth.add(zoneMask, trueInside, truthKnown);
   }
   result.searchedDisparities += range.numDisparities;
+  if (zone_.guardStep > 0) {
+    result.hasGuard = true;
+    const BelowRangeGuard guard = guardBelow(stereo_, range);
+    if (guard.step > 0)
+      result.checkedDisparities += (range.minDisparity - guard.lowest) / guard.step;
+    fronts_->unguarded.computeDisparity(viewOf(leftGrey), viewOf(rightGrey),
+                                        {range.minDisparity, range.numDisparities});
+    fronts_->unguarded.computeMask(thresholds);
+    const cv::Mat unguardedMask = matOf(fronts_->unguarded.mask());
+    result.unguardedVsFull.add(unguardedMask, fullMask);
+    if (!trueInside.empty()) result.unguardedVsTruth.add(unguardedMask, trueInside, truthKnown);
+  }
   ++result.frames;
 }
 

@@ -82,6 +82,7 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   hasDisparity_ = hasMask_ = false;  // until this frame is through
   checkSearchRange(stereo_, range);
   const StereoParams params = withRange(stereo_, range);
+  const BelowRangeGuard guard = guardBelow(stereo_, range);
   checkView(left, PixelType::U8C1, "left image");
   checkView(right, PixelType::U8C1, "right image");
   checkSameSize(left, "left image", right, "right image");
@@ -112,7 +113,7 @@ const Image& StereoFrontend::computeDisparity(const ConstImageView& left,
   start = Clock::now();
   forEachStripe(height, [&](RowRange rows) {
     matchBlocks(matchLeft, matchRight, wantTexture ? texture_.view() : ConstImageView{}, params,
-                clean_.view(), winnerRight_.view(), *backend_, rows);
+                guard, clean_.view(), winnerRight_.view(), *backend_, rows);
   });
   timings_.match = msSince(start);
 

@@ -128,7 +128,7 @@ OpenClFrontend::Ticket OpenClFrontend::submit(const ConstImageView& left,
   if (!cpu_) {
     try {
       pipeline_->submit(static_cast<int>(ticket % slots_.size()), left, right,
-                        withRange(stereo_, range), slot.out);
+                        withRange(stereo_, range), guardBelow(stereo_, range), slot.out);
       slot.onDevice = true;
       return ticket;
     } catch (const Error& e) {

@@ -17,6 +17,11 @@ const NumberOption<ZoneSearch> kZoneSearchOptions[] = {
     {"zoneMaxDisparity", "--zone-max-disparity", "px", 0, 2047,
      "largest disparity searched with --zone-search 1; 0: the full range's",
      &ZoneSearch::maxDisparity},
+    {"zoneGuardStep", "--zone-guard-step", "px", 0, 64,
+     "with --zone-search 1, also cost every Nth disparity below the range: a pixel whose match "
+     "one of them beats (or ties within the uniqueness margin) is dropped, and they take part "
+     "in the left-right check; 0: off",
+     &ZoneSearch::guardStep},
 };
 
 int roundUpTo16(int n) {
@@ -40,6 +45,12 @@ StereoParams withRange(StereoParams p, SearchRange range) {
   return p;
 }
 
+BelowRangeGuard guardBelow(const StereoParams& full, SearchRange range) {
+  if (range.guardStep == 0) return {};
+  // The kernel checks at most 1024 px below a range.
+  return {range.guardStep, std::max(full.minDisparity, range.minDisparity - 1024)};
+}
+
 void restoreInvalidMarker(const ImageView& map, const StereoParams& full, SearchRange range,
                           RowRange rows) {
   if (range.minDisparity == full.minDisparity) return;  // the same marker
@@ -57,6 +68,9 @@ void checkSearchRange(const StereoParams& full, SearchRange range) {
     throw Error("the search range starts at " + std::to_string(range.minDisparity) +
                 " px, below the configured minDisparity " + std::to_string(full.minDisparity) +
                 " px");
+  if (range.guardStep < 0 || range.guardStep > kMaxGuardStep)
+    throw Error("the search range's guard step " + std::to_string(range.guardStep) +
+                " px is not within 0.." + std::to_string(kMaxGuardStep) + " (0: no guard)");
   validate(withRange(full, range));
 }
 
@@ -90,7 +104,8 @@ SearchRange zoneSearchRange(const StereoParams& full, std::span<const std::int16
   int bottom = ceilDiv(smallest - kDisparityScale / 2, kDisparityScale) - z.marginPx;
   bottom = std::min(std::max(bottom, full.minDisparity), top - kDisparityScale);
   const int count = roundUpTo16(top - bottom);
-  if (top - count >= full.minDisparity) return {top - count, count};
+  if (top - count > full.minDisparity) return {top - count, count, z.guardStep};
+  if (top - count == full.minDisparity) return {top - count, count};
   return {full.minDisparity, roundUpTo16(top - full.minDisparity)};
 }
 

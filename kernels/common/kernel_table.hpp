@@ -7,6 +7,7 @@
 
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
@@ -22,7 +23,8 @@ struct KernelTable {
                               const ImageView& filtered, const ImageView& texture, RowRange rows);
   void (*matchBlocks)(const ConstImageView& left, const ConstImageView& right,
                       const ConstImageView& texture, const StereoParams& params,
-                      const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
+                      const BelowRangeGuard& guard, const ImageView& disparity,
+                      const ImageView& winnerRight, RowRange rows);
   void (*leftRightCheck)(const ImageView& disparity, const ConstImageView& winnerRight,
                          const StereoParams& params, RowRange rows);
   void (*filterSpeckles)(const ImageView& disparity, const StereoParams& params);

@@ -113,7 +113,24 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const ImageView& disparity, const ImageView& winnerRight, const Backend& backend,
                  RowRange rows) {
+  matchBlocks(left, right, texture, params, BelowRangeGuard{}, disparity, winnerRight, backend,
+              rows);
+}
+
+void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                 const ConstImageView& texture, const StereoParams& params,
+                 const BelowRangeGuard& guard, const ImageView& disparity,
+                 const ImageView& winnerRight, const Backend& backend, RowRange rows) {
   validate(params);
+  if (guard.step < 0 || guard.step > kMaxGuardStep)
+    throw Error("guard step " + std::to_string(guard.step) + " px is not within 0.." +
+                std::to_string(kMaxGuardStep) + " (0: no guard)");
+  if (guard.step > 0 &&
+      (guard.lowest > params.minDisparity || guard.lowest < params.minDisparity - 1024))
+    throw Error("guard's lowest disparity " + std::to_string(guard.lowest) +
+                " px is not within [minDisparity - 1024, minDisparity] = [" +
+                std::to_string(params.minDisparity - 1024) + ", " +
+                std::to_string(params.minDisparity) + "]");
   checkView(left, PixelType::U8C1, "left image");
   checkView(right, PixelType::U8C1, "right image");
   checkSameSize(left, "left image", right, "right image");
@@ -148,7 +165,7 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   if (overlaps(disparity, winnerRight))
     throw Error("matchBlocks: the disparity and right-winner outputs must not overlap");
   requireKernel(reinterpret_cast<const void*>(tableOf(backend).matchBlocks), backend, "matching");
-  tableOf(backend).matchBlocks(left, right, texture, params, disparity, winnerRight,
+  tableOf(backend).matchBlocks(left, right, texture, params, guard, disparity, winnerRight,
                                resolveRows(rows, left.height));
 }
 

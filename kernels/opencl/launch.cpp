@@ -134,8 +134,8 @@ void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const Stere
 
 void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,
                   cl_mem left, cl_mem right, cl_mem texture, int width, int height,
-                  const StereoParams& params, RowRange rows, cl_mem disparity, cl_mem winnerRight,
-                  SadScratch& scratch, cl_event* event) {
+                  const StereoParams& params, const BelowRangeGuard& guard, RowRange rows,
+                  cl_mem disparity, cl_mem winnerRight, SadScratch& scratch, cl_event* event) {
   const int count = rows.end - rows.begin;
   if (count <= 0) return;
   const MatchRegion region = matchRegion(width, height, params);
@@ -152,10 +152,13 @@ void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_
   cl_mem colTex = scratch.colTex.get(context, static_cast<size_t>(used) * columns * 4);
   cl_mem rightCost = scratch.rightCost.get(context, static_cast<size_t>(used) * width * 4);
   cl_mem rightD = scratch.rightD.get(context, static_cast<size_t>(used) * width * 4);
+  const int guards = guardCount(params, guard);
+  cl_mem guardColumns = scratch.guardColumns.get(
+      context, static_cast<size_t>(used) * columns * static_cast<size_t>(guards) * 4);
   setArgs(k, left, right, texture, width, width, params.minDisparity, params.numDisparities, radius,
           params.textureThreshold, params.uniquenessRatio, region.x0, region.x1, region.y0,
           region.y1, rows.begin, rows.end, stripRows, disparity, winnerRight, width, colsum, colTex,
-          rightCost, rightD);
+          rightCost, rightD, guard.step, guards, guardColumns);
   const size_t global = static_cast<size_t>(used);
   const size_t local = 1;
   check(clEnqueueNDRangeKernel(q, k, 1, nullptr, &global, &local, 0, nullptr, event),

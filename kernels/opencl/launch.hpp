@@ -10,6 +10,7 @@
 
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 #include "opencl/cl_api.hpp"
 #include "opencl/device.hpp"
@@ -74,12 +75,12 @@ void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const Stere
 
 // Scratch of the matcher, per strip of rows.
 struct SadScratch {
-  Buffer colsum, colTex, rightCost, rightD;
+  Buffer colsum, colTex, rightCost, rightD, guardColumns;
 };
 void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,
                   cl_mem left, cl_mem right, cl_mem texture, int width, int height,
-                  const StereoParams& params, RowRange rows, cl_mem disparity, cl_mem winnerRight,
-                  SadScratch& scratch, cl_event* event);
+                  const StereoParams& params, const BelowRangeGuard& guard, RowRange rows,
+                  cl_mem disparity, cl_mem winnerRight, SadScratch& scratch, cl_event* event);
 
 void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,
                            int width, const StereoParams& params, RowRange rows, cl_event* event);

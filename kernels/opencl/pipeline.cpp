@@ -80,7 +80,7 @@ const std::string& Pipeline::deviceName() const {
 }
 
 void Pipeline::submit(int index, const ConstImageView& left, const ConstImageView& right,
-                      const StereoParams& stereo, Image& out) {
+                      const StereoParams& stereo, const BelowRangeGuard& guard, Image& out) {
   Impl& s = *impl_;
   Impl::Slot& slot = s.slots[static_cast<std::size_t>(index)];
   if (g_failEnqueue)
@@ -116,7 +116,7 @@ void Pipeline::submit(int index, const ConstImageView& left, const ConstImageVie
     enqueuePrefilterFor(q, *s.kernels, p, l, w, h, all, lf, tex, false, true, slot.add("texture"));
   }
   enqueueMatch(q, s.kernels->sad.get(), s.device->desc(), ctx, filter ? lf : l, filter ? rf : r,
-               tex, w, h, p, all, d, wr, slot.sad, slot.add("match"));
+               tex, w, h, p, guard, all, d, wr, slot.sad, slot.add("match"));
   if (p.disp12MaxDiff >= 0)
     enqueueLeftRightCheck(q, s.kernels->lrCheck.get(), d, wr, w, p, all,
                           slot.add("left-right check"));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "horopter/core/image.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 #include "horopter/vision/opencl_frontend.hpp"
 
@@ -26,9 +27,10 @@ class Pipeline {
   // Enqueues the frame into `slot` without waiting; `out` (the frame's
   // size, S16C1) receives the final disparity by wait(slot). `stereo`: the
   // constructor's parameters, or the same over another search range (its
-  // invalid marker is then that range's).
+  // invalid marker is then that range's); `guard`: the matcher's check
+  // below that range (kernels.hpp).
   void submit(int slot, const ConstImageView& left, const ConstImageView& right,
-              const StereoParams& stereo, Image& out);
+              const StereoParams& stereo, const BelowRangeGuard& guard, Image& out);
   // Completes the slot's frame (the CPU speckle filter and the median when
   // speckles are on) and fills `times` with its stage times.
   void wait(int slot, std::vector<OpenClStageTime>& times);

@@ -91,8 +91,8 @@ void prefilterNormalized(int index, const ConstImageView& src, int cap, int size
 }
 
 void match(int index, const ConstImageView& left, const ConstImageView& right,
-           const ConstImageView& texture, const StereoParams& params, const ImageView& disparity,
-           const ImageView& winnerRight, RowRange rows) {
+           const ConstImageView& texture, const StereoParams& params, const BelowRangeGuard& guard,
+           const ImageView& disparity, const ImageView& winnerRight, RowRange rows) {
   Call call(index);
   State& s = call.state();
   const int w = left.width, h = left.height;
@@ -109,7 +109,7 @@ void match(int index, const ConstImageView& left, const ConstImageView& right,
   cl_mem d = s.out0.get(call.context(), outBytes);
   cl_mem wr = s.out1.get(call.context(), outBytes);
   enqueueMatch(call.queue(), call.kernels().sad.get(), s.device->desc(), call.context(), l, rt, t,
-               w, h, params, rows, d, wr, s.sad, nullptr);
+               w, h, params, guard, rows, d, wr, s.sad, nullptr);
   readRows(call.queue(), d, disparity, rows.begin, rows.end, false, nullptr);
   readRows(call.queue(), wr, winnerRight, rows.begin, rows.end, true, nullptr);
 }
@@ -186,8 +186,9 @@ KernelTable tableFor() {
     prefilterNormalized(I, src, cap, size, f, tex, rows);
   };
   t.matchBlocks = [](const ConstImageView& l, const ConstImageView& r, const ConstImageView& tex,
-                     const StereoParams& p, const ImageView& d, const ImageView& wr,
-                     RowRange rows) { match(I, l, r, tex, p, d, wr, rows); };
+                     const StereoParams& p, const BelowRangeGuard& guard, const ImageView& d,
+                     const ImageView& wr,
+                     RowRange rows) { match(I, l, r, tex, p, guard, d, wr, rows); };
   t.leftRightCheck = [](const ImageView& d, const ConstImageView& wr, const StereoParams& p,
                         RowRange rows) { leftRight(I, d, wr, p, rows); };
   t.filterSpeckles = speckles;

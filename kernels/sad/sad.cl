@@ -20,6 +20,15 @@
 //   - The right view's winner: the left pixels of a row in increasing x reach
 //     each right pixel in increasing d, so a strict < keeps the smallest d,
 //     as the reference's loop.
+//   - The guard below the range (guardCount > 0, zone-limited matching):
+//     gcol (global scratch, [column][checked disparity]) and ghsum (private)
+//     slide as colsum and hsum do, for the disparities minD - (n + 1) *
+//     guardStep; columns whose right pixel lies past the image stay 0 and
+//     the pixels whose window would reach them skip that disparity. Their
+//     costs join the right view's candidates before the range's (a left
+//     pixel x reaches right pixel x - g before x - d for every d in the
+//     range), stored as index min(g - minD, -2) (-2: g = minD - 1, written
+//     as minD - 2, as the reference); INT_MIN marks "none".
 //   Costs are exact int32 sums (at most 255 * 255^2 < 2^31); the uniqueness
 //   limit and the sub-pixel fit use 64-bit longs as the reference. Rows of
 //   the range outside the matching region are filled with the invalid
@@ -40,7 +49,8 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
                         __global short* restrict disparity, __global short* restrict winnerRight,
                         int outStride, __global int* restrict colsumAll,
                         __global int* restrict colTexAll, __global int* restrict rbestCostAll,
-                        __global int* restrict rbestDAll) {
+                        __global int* restrict rbestDAll, int guardStep, int guardCount,
+                        __global int* restrict gcolAll) {
   const int strip = get_global_id(0);
   const int ys = rowBegin + strip * stripRows;
   const int ye = min(rowEnd, ys + stripRows);
@@ -65,12 +75,15 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
   __global int* restrict colTex = colTexAll + (size_t)strip * wc;
   __global int* restrict rbestCost = rbestCostAll + (size_t)strip * width;
   __global int* restrict rbestD = rbestDAll + (size_t)strip * width;
+  __global int* restrict gcol = gcolAll + (size_t)strip * wc * guardCount;
 
   // Column sums of the first row's window.
   for (int c = 0; c < wc; ++c) {
     for (int k = 0; k < numD; ++k)
       colsum[c * numD + k] = 0;
     colTex[c] = 0;
+    for (int n = 0; n < guardCount; ++n)
+      gcol[c * guardCount + n] = 0;
   }
   for (int j = yA - radius; j <= yA + radius; ++j) {
     __global const uchar* l = left + j * inStride + xa;
@@ -86,9 +99,16 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
       for (int c = 0; c < wc; ++c)
         colTex[c] += t[c];
     }
+    for (int n = 0; n < guardCount; ++n) {
+      const int g = minD - (n + 1) * guardStep;
+      __global const uchar* rg = right + j * inStride;
+      for (int c = 0; c < wc && xa + c - g < width; ++c)
+        gcol[c * guardCount + n] += abs((int)l[c] - (int)rg[xa + c - g]);
+    }
   }
 
   int hsum[SAD_MAX_DISPARITIES];
+  int ghsum[SAD_MAX_DISPARITIES];
   for (int y = yA; y < yB; ++y) {
     if (y > yA) {
       __global const uchar* lIn = left + (y + radius) * inStride + xa;
@@ -108,6 +128,14 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
         for (int c = 0; c < wc; ++c)
           colTex[c] += (int)tIn[c] - (int)tOut[c];
       }
+      for (int n = 0; n < guardCount; ++n) {
+        const int g = minD - (n + 1) * guardStep;
+        __global const uchar* gIn = right + (y + radius) * inStride;
+        __global const uchar* gOut = right + (y - radius - 1) * inStride;
+        for (int c = 0; c < wc && xa + c - g < width; ++c)
+          gcol[c * guardCount + n] += abs((int)lIn[c] - (int)gIn[xa + c - g]) -
+                                      abs((int)lOut[c] - (int)gOut[xa + c - g]);
+      }
     }
 
     for (int k = 0; k < numD; ++k)
@@ -117,10 +145,12 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
       for (int k = 0; k < numD; ++k)
         hsum[k] += colsum[c * numD + k];
       texSum += colTex[c];
+      for (int n = 0; n < guardCount; ++n)
+        ghsum[n] = (c == 0 ? 0 : ghsum[n]) + gcol[c * guardCount + n];
     }
     for (int xr = x0 - maxD; xr < x1 - minD; ++xr) {
       rbestCost[xr] = INT_MAX;
-      rbestD[xr] = -1;
+      rbestD[xr] = INT_MIN;
     }
 
     __global short* outRow = disparity + y * outStride;
@@ -131,6 +161,10 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
         for (int k = 0; k < numD; ++k)
           hsum[k] += enter[k] - leave[k];
         texSum += colTex[x + radius - xa] - colTex[x - radius - 1 - xa];
+        __global const int* gEnter = gcol + (x + radius - xa) * guardCount;
+        __global const int* gLeave = gcol + (x - radius - 1 - xa) * guardCount;
+        for (int n = 0; n < guardCount; ++n)
+          ghsum[n] += gEnter[n] - gLeave[n];
       }
 
       int bestCost = INT_MAX;
@@ -140,6 +174,18 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
       for (int k = 0; k < numD; ++k)
         best = min(best, hsum[k] == bestCost ? k : numD);
 
+      // The guard's right candidates first (smaller d), for the right pixels
+      // that have a winner (x - g < x1 - minD) and where g counts.
+      for (int n = guardCount - 1; n >= 0; --n) {
+        const int g = minD - (n + 1) * guardStep;
+        const int xr = x - g;
+        if (xr >= x1 - minD || x - g + radius >= width) continue;
+        const int c = ghsum[n];
+        if (c < rbestCost[xr]) {
+          rbestCost[xr] = c;
+          rbestD[xr] = min(g - minD, -2);
+        }
+      }
       // The right view's candidates: right pixel x - d gets C(x, d).
       __global int* rc = rbestCost + x - minD;
       __global int* rd = rbestD + x - minD;
@@ -162,6 +208,18 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
           clash |= (hsum[k] <= limit32) & (abs(k - best) > 1);
         ok = !clash;
       }
+      if (ok && guardCount > 0) {
+        // The least checked cost below the range, over the disparities whose
+        // window lies inside the right image (x - g + radius < width).
+        int guardLeast = INT_MAX;
+        for (int n = 0; n < guardCount; ++n) {
+          const int g = minD - (n + 1) * guardStep;
+          if (x - g + radius < width) guardLeast = min(guardLeast, ghsum[n]);
+        }
+        const long c0 = bestCost;
+        const long limit = c0 + c0 * uniquenessRatio / 100;
+        ok = !(guardCount > 0 && guardLeast != INT_MAX && (long)guardLeast <= limit);
+      }
       if (ok) {
         const long c0 = bestCost;
         const long cm = best > 0 ? hsum[best - 1] : hsum[best + 1];
@@ -176,7 +234,7 @@ __kernel void sad_match(__global const uchar* restrict left, __global const ucha
 
     __global short* winRow = winnerRight + y * outStride;
     for (int xr = x0 - maxD; xr < x1 - minD; ++xr) {
-      if (rbestD[xr] >= 0) winRow[xr] = (short)(minD + rbestD[xr]);
+      if (rbestD[xr] != INT_MIN) winRow[xr] = (short)(minD + rbestD[xr]);
     }
   }
 }

@@ -4,6 +4,7 @@
 
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
@@ -17,10 +18,17 @@ struct MatchRegion {
 };
 MatchRegion matchRegion(int width, int height, const StereoParams& params);
 
+// How many disparities the guard checks below params' range (0 when off):
+// minDisparity - k * step for k = 1 .. guardCount.
+inline int guardCount(const StereoParams& params, const BelowRangeGuard& guard) {
+  return guard.step > 0 ? (params.minDisparity - guard.lowest) / guard.step : 0;
+}
+
 namespace scalar {
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
+                 const BelowRangeGuard& guard, const ImageView& disparity,
+                 const ImageView& winnerRight, RowRange rows);
 }  // namespace scalar
 
 // AVX2 version (kernels/sad/sad_avx2.cpp): bit-exact with scalar; call only
@@ -28,7 +36,8 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
 namespace avx2 {
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows);
+                 const BelowRangeGuard& guard, const ImageView& disparity,
+                 const ImageView& winnerRight, RowRange rows);
 }  // namespace avx2
 
 }  // namespace horopter

@@ -59,6 +59,19 @@
 //      cost" around each row). The least key over increasing k, as above,
 //      keeps the smallest d on ties, as the reference does.
 //
+//   4. Guard below the range (zone-limited matching, when on): per checked
+//      disparity, 16-bit column sums of |L - R| slide down the rows as the
+//      others do (16 columns per vector, the right pixels read in place),
+//      and each row's window sums (2r + 1 column loads per 16 pixels) fold
+//      into the least per pixel, 65535 where none counts. finishLeft then
+//      invalidates a pixel whose least is <= its uniqueness limit (the
+//      winner's cost when the test is off), unsigned in 16 bits: these costs
+//      obey the same bound. The window sums stay in one row per checked
+//      disparity (65535 outside the pixels where it counts, and on wide
+//      edges), so that decideRight reads right pixel xr's candidates at
+//      entries xr + g - x0, in increasing g, and takes the least where it
+//      is <= the range's least.
+//
 //   Tails: the last block of pixels is padded with "no cost" lanes; image
 //   rows are read only within [0, width), and outputs are written only in the
 //   rows asked for (every pixel of them, as the reference). Memory per call
@@ -284,8 +297,9 @@ class Matcher {
  public:
   HOROPTER_AVX2_TARGET Matcher(const ConstImageView& left, const ConstImageView& right,
                                const ConstImageView& texture, const StereoParams& params,
-                               const ImageView& disparity, const ImageView& winnerRight,
-                               const MatchRegion& region, int keyShift)
+                               const BelowRangeGuard& guard, const ImageView& disparity,
+                               const ImageView& winnerRight, const MatchRegion& region,
+                               int keyShift)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -321,7 +335,17 @@ class Matcher {
         costs_(static_cast<std::size_t>(count_ + 2) * rowLen_),
         laneOf_(static_cast<std::size_t>(count_) * kLanes),
         disparityOf_(static_cast<std::size_t>(count_) * kLanes),
-        pxTexture_(padded_) {
+        pxTexture_(padded_),
+        guardStep_(guard.step),
+        guards_(guardCount(params, guard)),
+        guardStride_((cols_ + 2 * kChunk) / kLanes * kLanes),
+        guardColumns_(static_cast<std::size_t>(guards_) * guardStride_),
+        guardLeast_(guards_ > 0 ? padded_ + kLanes : 0),
+        guardEdge_((minD_ + count_ - 1 - guard.lowest + 2 * kLanes) / kLanes * kLanes),
+        guardRowLen_(guardEdge_ + padded_ + kChunk + 2 * kLanes),
+        guardCosts_(static_cast<std::size_t>(guards_) * guardRowLen_) {
+    std::fill_n(guardCosts_.get(), static_cast<std::size_t>(guards_) * guardRowLen_,
+                std::uint16_t{0xFFFF});
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
@@ -332,13 +356,20 @@ class Matcher {
   }
 
   HOROPTER_AVX2_TARGET void run(int y0, int y1) {
-    for (int j = y0 - r_; j <= y0 + r_; ++j)
+    for (int j = y0 - r_; j <= y0 + r_; ++j) {
       accumulateRow(j);
+      accumulateGuardRow(j);
+    }
+    if (guards_ > 0) guardRow();
     rowPass<false>(y0);
     for (int y = y0 + 1; y < y1; ++y) {
       reverseRow(right_.row<std::uint8_t>(y + r_), width_, reversedIn_.get());
       reverseRow(right_.row<std::uint8_t>(y - r_ - 1), width_, reversedOut_.get());
       if (useTexture_) slideTexture(y + r_, y - r_ - 1);
+      if (guards_ > 0) {
+        slideGuard(y + r_, y - r_ - 1);
+        guardRow();
+      }
       rowPass<true>(y);
     }
   }
@@ -407,6 +438,96 @@ class Matcher {
     }
     for (; x < xb_; ++x)
       *columnTexture(x) = static_cast<std::uint16_t>(*columnTexture(x) + tIn[x] - tOut[x]);
+  }
+
+  // The guard's checked disparity n (0 .. guards - 1), the end of the
+  // columns whose right pixel lies inside the image (x - g < W), and the end
+  // of the pixels i = x - x0 where it counts (x < W - r + g).
+  HOROPTER_AVX2_TARGET int guardDisparity(int n) const { return minD_ - (n + 1) * guardStep_; }
+  HOROPTER_AVX2_TARGET int guardColumnEnd(int n) const {
+    return std::min(xb_, width_ + guardDisparity(n));
+  }
+  HOROPTER_AVX2_TARGET int guardPixelEnd(int n) const {
+    return std::min(x1_, width_ - r_ + guardDisparity(n)) - x0_;
+  }
+  // Window costs of checked disparity n for pixels i = x - x0 (65535 where
+  // it does not count); entries from -guardEdge_.
+  HOROPTER_AVX2_TARGET std::uint16_t* guardCosts(int n) const {
+    return guardCosts_.get() + static_cast<std::size_t>(n) * guardRowLen_ + guardEdge_;
+  }
+  // Column sums of checked disparity n, entry x - xa (zero past the end).
+  HOROPTER_AVX2_TARGET std::uint16_t* guardColumn(int n) const {
+    return guardColumns_.get() + static_cast<std::size_t>(n) * guardStride_;
+  }
+
+  // Adds row j's |L - R| at every checked disparity to its column sums.
+  HOROPTER_AVX2_TARGET void accumulateGuardRow(int j) {
+    const auto* l = left_.row<std::uint8_t>(j);
+    const auto* rr = right_.row<std::uint8_t>(j);
+    for (int n = 0; n < guards_; ++n) {
+      const int g = guardDisparity(n);
+      std::uint16_t* col = guardColumn(n);
+      for (int x = xa_; x < guardColumnEnd(n); ++x)
+        col[x - xa_] = static_cast<std::uint16_t>(col[x - xa_] + std::abs(l[x] - rr[x - g]));
+    }
+  }
+
+  // The guard's column sums: add row `in`, drop row `out`.
+  HOROPTER_AVX2_TARGET void slideGuard(int in, int out) {
+    const auto* lIn = left_.row<std::uint8_t>(in);
+    const auto* lOut = left_.row<std::uint8_t>(out);
+    const auto* rIn = right_.row<std::uint8_t>(in);
+    const auto* rOut = right_.row<std::uint8_t>(out);
+    const auto absDiff16 = [&](const std::uint8_t* a, const std::uint8_t* b) HOROPTER_AVX2_TARGET {
+      const __m128i va = loadu128(a), vb = loadu128(b);
+      return _mm256_cvtepu8_epi16(_mm_or_si128(_mm_subs_epu8(va, vb), _mm_subs_epu8(vb, va)));
+    };
+    for (int n = 0; n < guards_; ++n) {
+      const int g = guardDisparity(n), end = guardColumnEnd(n);
+      std::uint16_t* col = guardColumn(n) - xa_;  // col[x]
+      int x = xa_;
+      for (; x + kLanes <= end; x += kLanes) {
+        auto* p = reinterpret_cast<__m256i*>(col + x);
+        const __m256i sum =
+            _mm256_add_epi16(_mm256_loadu_si256(p), absDiff16(lIn + x, rIn + (x - g)));
+        _mm256_storeu_si256(p, _mm256_sub_epi16(sum, absDiff16(lOut + x, rOut + (x - g))));
+      }
+      for (; x < end; ++x)
+        col[x] = static_cast<std::uint16_t>(col[x] + std::abs(lIn[x] - rIn[x - g]) -
+                                            std::abs(lOut[x] - rOut[x - g]));
+    }
+  }
+
+  // The current row's window costs of every checked disparity, and their
+  // least per pixel i (65535 where none counts): pixel i's window is columns
+  // x0 + i - r .. x0 + i + r, entries i .. i + 2r of a guard column.
+  HOROPTER_AVX2_TARGET void guardRow() {
+    std::uint16_t* least = guardLeast_.get();
+    std::fill_n(least, padded_ + kLanes, std::uint16_t{0xFFFF});
+    const int window = 2 * r_ + 1;
+    for (int n = 0; n < guards_; ++n) {
+      const std::uint16_t* col = guardColumn(n);
+      std::uint16_t* out = guardCosts(n);
+      const int end = guardPixelEnd(n);
+      for (int i = 0; i < end; i += kLanes) {
+        __m256i sum = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(col + i));
+        for (int c = 1; c < window; ++c)
+          sum = _mm256_add_epi16(sum,
+                                 _mm256_loadu_si256(reinterpret_cast<const __m256i*>(col + i + c)));
+        auto* p = reinterpret_cast<__m256i*>(least + i);
+        if (i + kLanes <= end) {
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), sum);
+          _mm256_storeu_si256(p, _mm256_min_epu16(_mm256_loadu_si256(p), sum));
+        } else {
+          alignas(32) std::uint16_t lanes[kLanes];
+          _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), sum);
+          for (int j = 0; i + j < end; ++j) {
+            out[i + j] = lanes[j];
+            least[i + j] = std::min(least[i + j], lanes[j]);
+          }
+        }
+      }
+    }
   }
 
   // Sweep state of one group pair (or of the last, unpaired group): where
@@ -805,6 +926,13 @@ class Matcher {
       bad = _mm256_or_si256(bad, _mm256_xor_si256(_mm256_cmpeq_epi16(within, expected), ones));
       bad = _mm256_or_si256(bad, _mm256_cmpeq_epi16(limit, ones));
     }
+    if (guards_ > 0) {
+      // The guard's least <= the limit (the least cost when the uniqueness
+      // test is off), unsigned; 65535 (none) is above every real limit.
+      const __m256i guardLimit = params_.uniquenessRatio > 0 ? limit : least;
+      const __m256i g = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(guardLeast_.get() + i));
+      bad = _mm256_or_si256(bad, _mm256_cmpeq_epi16(_mm256_max_epu16(g, guardLimit), guardLimit));
+    }
 
     // At the ends of the range the missing side mirrors the other. With
     // c0 the least cost, den = cm + cp - 2 c0 + |cm - cp| = 2 (max - c0), so
@@ -860,6 +988,28 @@ class Matcher {
     const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
     for (int n = 0; n < kBlocks; ++n)
       d[n] = _mm256_add_epi16(d[n], _mm256_and_si256(best[n], lowBits));
+    if (guards_ > 0) {
+      // The guard's candidates, in increasing g: a strict < (unsigned, by
+      // the bias) keeps the smallest g; it wins where <= the range's least.
+      const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+      for (int b = 0; b < kBlocks; ++b) {
+        const int xr = xr0 + b * kLanes;
+        const __m256i least = _mm256_srli_epi16(_mm256_xor_si256(best[b], bias16), kShift);
+        __m256i guardLeast = _mm256_set1_epi16(-1), guardD = _mm256_setzero_si256();
+        for (int n = guards_ - 1; n >= 0; --n) {
+          const int g = guardDisparity(n);
+          const __m256i c =
+              _mm256_loadu_si256(reinterpret_cast<const __m256i*>(guardCosts(n) + (xr + g - x0_)));
+          const __m256i better =
+              _mm256_cmpgt_epi16(_mm256_xor_si256(guardLeast, bias16), _mm256_xor_si256(c, bias16));
+          guardLeast = _mm256_blendv_epi8(guardLeast, c, better);
+          guardD = _mm256_blendv_epi8(
+              guardD, _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))), better);
+        }
+        const __m256i wins = _mm256_cmpeq_epi16(_mm256_max_epu16(guardLeast, least), least);
+        d[b] = _mm256_blendv_epi8(d[b], guardD, wins);
+      }
+    }
     for (int n = 0; n < kBlocks; ++n) {
       const int xr = xr0 + n * kLanes;
       if (xr + kLanes <= xrHigh + 1) {
@@ -894,14 +1044,19 @@ class Matcher {
   AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
   AlignedArray<std::int16_t> disparityOf_;               // [k][16] = minD + k
   AlignedArray<int> pxTexture_;                          // per pixel i = x - x0: texture window sum
+  const int guardStep_, guards_, guardStride_;           // guards_: checked disparities
+  AlignedArray<std::uint16_t> guardColumns_;             // [n][x - xa]: column sums
+  AlignedArray<std::uint16_t> guardLeast_;               // [i]: least window cost (65535: none)
+  const int guardEdge_, guardRowLen_;
+  AlignedArray<std::uint16_t> guardCosts_;  // [n][guardEdge + i]: window costs (65535: none)
 };
 
 }  // namespace
 
 HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                                       const ConstImageView& texture, const StereoParams& params,
-                                      const ImageView& disparity, const ImageView& winnerRight,
-                                      RowRange rows) {
+                                      const BelowRangeGuard& guard, const ImageView& disparity,
+                                      const ImageView& winnerRight, RowRange rows) {
   const int width = left.width;
   const int r = params.blockSize / 2;
   const std::int16_t invalid = invalidDisparity(params);
@@ -922,14 +1077,14 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
   const std::int64_t side = params.blockSize;
   // Costs must stay below 65535, the "no cost" marker.
   if (maxDiff * side * side >= 0xFFFF) {
-    scalar::matchBlocks(left, right, texture, params, disparity, winnerRight, rows);
+    scalar::matchBlocks(left, right, texture, params, guard, disparity, winnerRight, rows);
     return;
   }
   // Keys G * cost + (k mod G), G = 2^shift, must stay below 65535 too.
   int shift = 0;
   while (shift < 3 && ((maxDiff * side * side) << (shift + 1)) + (2 << shift) - 1 < 0xFFFF)
     ++shift;
-  Matcher matcher(left, right, texture, params, disparity, winnerRight, region, shift);
+  Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift);
   matcher.run(region.y0, region.y1);
 }
 

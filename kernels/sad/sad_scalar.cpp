@@ -33,13 +33,36 @@
 //     disparity = (b * 256 + off + 8) >> 4      (arithmetic shift: floor)
 //   i.e. 1/16 px, rounded to nearest with halves up.
 //
-//   Texture and uniqueness are checked in that order; the result is the same
-//   whichever fails first.
+//   Guard below the range (matchBlocks with a BelowRangeGuard, step > 0;
+//   zone-limited matching): the checked disparities are
+//   g_k = minDisparity - k * step for k = 1 .. K, K = (minDisparity - lowest)
+//   / step (none when lowest = minDisparity). g_k counts for pixel (x, y)
+//   where its window lies inside the right image, x - g_k + r <= W - 1 (for
+//   g_k >= 0 everywhere in the region; the left edge always holds). With
+//   G = the least C(x, y, g_k) over the g_k that count (none: no check), the
+//   pixel is invalid if G <= t, t the uniqueness limit above, or C(b) when
+//   uniquenessRatio is 0: a checked disparity that would have won (ties go
+//   to the smaller d) or failed the winner's uniqueness test over the full
+//   range. Unlike the full range's test, a checked disparity next to the
+//   winner (g_1 = minDisparity - 1 with step 1, b = minDisparity) counts as
+//   well. The sub-pixel step does not change.
+//
+//   Texture, uniqueness and the guard are checked in that order; the result
+//   is the same whichever fails first.
 //
 //   Right winner (for the left-right check, from the same costs): for the
 //   right pixel (xr, y), the d of least C(xr + d, y, d) over the d whose left
 //   pixel xr + d lies in the region's columns; ties go to the smallest d;
 //   minDisparity - 1 where no d qualifies. Texture and uniqueness play no part.
+//   With the guard, a right pixel that has a winner in the range also weighs
+//   the checked g_k whose left pixel xr + g_k lies in the region's columns
+//   (it counts there: xr + r <= W - 1 holds for these right pixels): if the
+//   least of their C(xr + g_k, y, g_k) is <= the range's least, the winner
+//   is the smallest g_k holding it (a smaller d wins ties), written as
+//   min(g_k, minDisparity - 2) so that g_1 = minDisparity - 1 (step 1) does
+//   not read as "no winner". The left-right check then rejects a left pixel
+//   whose right partner matches better below the range, as the full range's
+//   would (for disp12MaxDiff <= 1 exactly, except at the range's bottom).
 //
 //   Only the output rows in `rows` are written (both maps); every row's result
 //   depends on the input rows of its window alone, so stripes of a frame give
@@ -71,7 +94,10 @@ namespace {
 
 // Decides one left pixel from its costs over the range (costs[k] is the cost
 // of disparity minDisparity + k). Returns the disparity in 1/16 px or invalid.
-std::int16_t decidePixel(const std::int32_t* costs, int textureSum, const StereoParams& params) {
+// guardLeast: the least cost of the checked disparities below the range
+// that count for this pixel (INT32_MAX: none).
+std::int16_t decidePixel(const std::int32_t* costs, int textureSum, std::int32_t guardLeast,
+                         const StereoParams& params) {
   const int count = params.numDisparities;
   const std::int16_t invalid = invalidDisparity(params);
 
@@ -90,6 +116,12 @@ std::int16_t decidePixel(const std::int32_t* costs, int textureSum, const Stereo
     }
   }
 
+  if (guardLeast != std::numeric_limits<std::int32_t>::max()) {
+    const std::int64_t c0 = costs[best];
+    const std::int64_t limit = c0 + c0 * params.uniquenessRatio / 100;  // c0 when the ratio is 0
+    if (guardLeast <= limit) return invalid;
+  }
+
   const std::int64_t c0 = costs[best];
   std::int64_t cm = best > 0 ? costs[best - 1] : costs[best + 1];
   std::int64_t cp = best < count - 1 ? costs[best + 1] : costs[best - 1];
@@ -103,7 +135,8 @@ std::int16_t decidePixel(const std::int32_t* costs, int textureSum, const Stereo
 
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
-                 const ImageView& disparity, const ImageView& winnerRight, RowRange rows) {
+                 const BelowRangeGuard& guard, const ImageView& disparity,
+                 const ImageView& winnerRight, RowRange rows) {
   const int width = left.width;
   const int height = left.height;
   const int r = params.blockSize / 2;
@@ -132,6 +165,17 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   std::vector<std::int32_t> columnTexture(width, 0);
   const bool useTexture = params.textureThreshold > 0;
 
+  // The guard's checked disparities, with their column sums over the columns
+  // whose right pixel lies inside the image (x - g < W), and the pixels
+  // where they count (x < W - r + g).
+  const int guards = guardCount(params, guard);
+  std::vector<std::int32_t> guardColumn(static_cast<std::size_t>(guards) * width, 0);
+  const auto guardDisparity = [&](int n) { return minD - (n + 1) * guard.step; };
+  const auto guardColumnEnd = [&](int n) { return std::min(xb, width + guardDisparity(n)); };
+  const auto guardPixelEnd = [&](int n) {
+    return std::min(region.x1, width - r + guardDisparity(n));
+  };
+
   auto addRow = [&](int row, int sign) {
     const auto* l = left.row<std::uint8_t>(row);
     const auto* rr = right.row<std::uint8_t>(row);
@@ -140,6 +184,12 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
       std::int32_t* col = &columnCost[static_cast<std::size_t>(k) * width];
       for (int x = xa; x < xb; ++x)
         col[x] += sign * std::abs(l[x] - rr[x - d]);
+    }
+    for (int n = 0; n < guards; ++n) {
+      const int g = guardDisparity(n);
+      std::int32_t* col = &guardColumn[static_cast<std::size_t>(n) * width];
+      for (int x = xa; x < guardColumnEnd(n); ++x)
+        col[x] += sign * std::abs(l[x] - rr[x - g]);
     }
     if (useTexture) {
       const auto* t = texture.row<std::uint8_t>(row);
@@ -152,6 +202,8 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
 
   std::vector<std::int32_t> costs(static_cast<std::size_t>(count) * width);  // [x][k]
   std::vector<std::int32_t> rightBestCost(width);
+  std::vector<std::int32_t> guardLeast(width);
+  std::vector<std::int32_t> guardCost(static_cast<std::size_t>(guards) * width);  // [n][x]
   for (int y = region.y0; y < region.y1; ++y) {
     if (y > region.y0) {
       addRow(y + r, +1);
@@ -171,6 +223,23 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
       }
     }
 
+    // The guard's least cost per pixel, from running sums as above.
+    std::fill(guardLeast.begin(), guardLeast.end(), std::numeric_limits<std::int32_t>::max());
+    for (int n = 0; n < guards; ++n) {
+      const std::int32_t* col = &guardColumn[static_cast<std::size_t>(n) * width];
+      std::int32_t sum = 0;
+      for (int x = region.x0; x < guardPixelEnd(n); ++x) {
+        if (x == region.x0) {
+          for (int i = -r; i <= r; ++i)
+            sum += col[x + i];
+        } else {
+          sum += col[x + r] - col[x - r - 1];
+        }
+        guardLeast[x] = std::min(guardLeast[x], sum);
+        guardCost[static_cast<std::size_t>(n) * width + x] = sum;
+      }
+    }
+
     auto* outDisparity = disparity.row<std::int16_t>(y);
     for (int x = region.x0; x < region.x1; ++x) {
       int textureSum = 0;
@@ -178,8 +247,8 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
         for (int i = -r; i <= r; ++i)
           textureSum += columnTexture[x + i];
       }
-      outDisparity[x] =
-          decidePixel(&costs[static_cast<std::size_t>(x) * count], textureSum, params);
+      outDisparity[x] = decidePixel(&costs[static_cast<std::size_t>(x) * count], textureSum,
+                                    guardLeast[x], params);
     }
 
     // The right view's winner: left pixels in increasing x reach each right
@@ -195,6 +264,26 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
           outWinner[xr] = static_cast<std::int16_t>(minD + k);
         }
       }
+    }
+
+    // The guard's candidates for the right pixels that have a winner: the
+    // checked disparities in increasing g (n decreasing), a strict < keeping
+    // the smallest g, then <= against the range's least (g is smaller).
+    const int maxD = minD + count - 1;
+    for (int xr = region.x0 - maxD; xr < region.x1 - minD && guards > 0; ++xr) {
+      std::int32_t least = std::numeric_limits<std::int32_t>::max();
+      int leastD = 0;
+      for (int n = guards - 1; n >= 0; --n) {
+        const int x = xr + guardDisparity(n);
+        if (x < region.x0 || x >= guardPixelEnd(n)) continue;
+        const std::int32_t c = guardCost[static_cast<std::size_t>(n) * width + x];
+        if (c < least) {
+          least = c;
+          leastD = guardDisparity(n);
+        }
+      }
+      if (least <= rightBestCost[xr])
+        outWinner[xr] = static_cast<std::int16_t>(std::min(leastD, minD - 2));
     }
   }
 }

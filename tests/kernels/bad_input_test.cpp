@@ -196,6 +196,22 @@ TEST(BadInput, MissingTextureWhenTextureCheckIsOn) {
                               s.winner.view()));
 }
 
+TEST(BadInput, GuardBelowTheRangeOutOfBounds) {
+  MatchSetup s;
+  s.params.minDisparity = 8;
+  const auto run = [&](BelowRangeGuard guard) {
+    matchBlocks(s.left.view(), s.right.view(), s.texture.view(), s.params, guard,
+                s.disparity.view(), s.winner.view());
+  };
+  EXPECT_ERROR(run({-1, 0}), "guard step", "0..1024");
+  EXPECT_ERROR(run({kMaxGuardStep + 1, 0}), "guard step");
+  EXPECT_ERROR(run({2, 9}), "lowest", "minDisparity");  // above the range's bottom
+  EXPECT_ERROR(run({2, 8 - 1025}), "lowest", "minDisparity - 1024");
+  EXPECT_NO_THROW(run({2, 0}));
+  EXPECT_NO_THROW(run({2, 8})) << "nothing below to check";
+  EXPECT_NO_THROW(run({0, 1000})) << "off: lowest is not read";
+}
+
 TEST(BadInput, ImageSmallerThanBlock) {
   MatchSetup s(64, 8);
   s.params.blockSize = 9;

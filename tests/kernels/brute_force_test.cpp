@@ -313,6 +313,83 @@ TEST(BruteForceMatch, PrefilteredInputsWithDefaultChecks) {
   }
 }
 
+// The guard below the range (sad_scalar.cpp's rules) from the naive matcher
+// over the range and naive window costs: a valid left pixel is dropped when
+// some counted checked disparity costs <= its uniqueness limit (its cost
+// when the ratio is 0); a right pixel with a winner takes the smallest
+// checked disparity of least cost when that is <= the range's least,
+// written as min(g, minDisparity - 2).
+TEST(BruteForceMatch, GuardBelowTheRangeFollowsItsRules) {
+  long dropped = 0, retargeted = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const int w = 61, h = 13;
+    StereoParams p;
+    p.minDisparity = 10 + static_cast<int>(seed % 3);
+    p.numDisparities = 16;
+    p.blockSize = 5;
+    p.uniquenessRatio = seed % 2 == 0 ? 0 : 15;
+    p.textureThreshold = 0;
+    const BelowRangeGuard guard{1 + static_cast<int>(seed % 3), static_cast<int>(seed % 2) - 3};
+    const StereoPair pair =
+        shiftedPair(w, h, 4 + static_cast<int>(seed), Texture::Uniform, seed, 20);
+    TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
+    prefilterXSobel(pair.left.view(), p.preFilterCap, lf.view(), {});
+    prefilterXSobel(pair.right.view(), p.preFilterCap, rf.view(), {});
+    const naive::MatchResult plain = naive::matchBlocks(lf.view(), rf.view(), {}, p);
+    TestImage disparity(w, h, PixelType::S16C1), winner(w, h, PixelType::S16C1);
+    matchBlocks(lf.view(), rf.view(), {}, p, guard, disparity.view(), winner.view());
+
+    const int r = p.blockSize / 2, minD = p.minDisparity, maxD = minD + p.numDisparities - 1;
+    const MatchRegion region = matchRegion(w, h, p);
+    std::vector<int> checked;
+    for (int g = minD - guard.step; g >= guard.lowest; g -= guard.step)
+      checked.push_back(g);
+    const auto counts = [&](int x, int g) { return x - g + r <= w - 1; };
+    TestImage want = plain.disparity.clone(), wantWinner = plain.winnerRight.clone();
+    for (int y = region.y0; y < region.y1; ++y) {
+      for (int x = region.x0; x < region.x1; ++x) {
+        std::int16_t& d = want.view().row<std::int16_t>(y)[x];
+        if (d == invalidDisparity(p)) continue;
+        int b = minD;
+        for (int k = minD + 1; k <= maxD; ++k)
+          if (naive::sadCost(lf.view(), rf.view(), x, y, k, r) <
+              naive::sadCost(lf.view(), rf.view(), x, y, b, r))
+            b = k;
+        const std::int64_t c0 = naive::sadCost(lf.view(), rf.view(), x, y, b, r);
+        const std::int64_t limit = c0 + c0 * p.uniquenessRatio / 100;
+        for (int g : checked)
+          if (counts(x, g) && naive::sadCost(lf.view(), rf.view(), x, y, g, r) <= limit) {
+            d = invalidDisparity(p);
+            ++dropped;
+            break;
+          }
+      }
+      for (int xr = region.x0 - maxD; xr < region.x1 - minD; ++xr) {
+        std::int16_t& wr = wantWinner.view().row<std::int16_t>(y)[xr];
+        const std::int32_t rangeLeast = naive::sadCost(lf.view(), rf.view(), xr + wr, y, wr, r);
+        std::int32_t least = std::numeric_limits<std::int32_t>::max();
+        int leastG = 0;
+        for (auto g = checked.rbegin(); g != checked.rend(); ++g) {  // increasing g
+          if (xr + *g < region.x0 || !counts(xr + *g, *g)) continue;
+          const std::int32_t c = naive::sadCost(lf.view(), rf.view(), xr + *g, y, *g, r);
+          if (c < least) {
+            least = c;
+            leastG = *g;
+          }
+        }
+        if (least <= rangeLeast) {
+          wr = static_cast<std::int16_t>(std::min(leastG, minD - 2));
+          ++retargeted;
+        }
+      }
+    }
+    EXPECT_TRUE(sameImage(want.view(), disparity.view())) << "seed " << seed;
+    EXPECT_TRUE(sameImage(wantWinner.view(), winner.view())) << "seed " << seed;
+  }
+  EXPECT_GT(dropped, 0) << "no pixel dropped: the scenes test nothing";
+  EXPECT_GT(retargeted, 0) << "no right winner moved below the range: the scenes test nothing";
+}
+
 // The largest costs (255 per pixel over a 255x255 window stay exact in int32)
 // on a tall narrow strip, so the test stays small.
 TEST(BruteForceMatch, LargestBlockSaturatedCostsStayExact) {

@@ -1,6 +1,8 @@
 // zoneSearchRange: the range a frame searches follows its zone, never
 // leaves out a disparity that can reach a threshold (less the margin), and
 // keeps the full range's top; the options are checked against their table.
+// The guard below the range removes a far textured plane that the range
+// alone would call inside.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,16 +10,20 @@
 #include <vector>
 
 #include "horopter/core/error.hpp"
+#include "horopter/vision/frontend.hpp"
 #include "horopter/vision/zone_search.hpp"
+#include "test_support.hpp"
 
 namespace horopter::test {
 namespace {
 
+// Zone search on, without the guard below the range unless asked.
 ZoneSearch on(int margin = 4, int maxDisparity = 0) {
   ZoneSearch z;
   z.enabled = 1;
   z.marginPx = margin;
   z.maxDisparity = maxDisparity;
+  z.guardStep = 0;
   return z;
 }
 
@@ -100,7 +106,73 @@ TEST(ZoneSearch, OptionsAreCheckedAgainstTheirTable) {
   EXPECT_EQ(largestDisparity(p, on(4, 127)), 127);
   EXPECT_EQ(largestDisparity(p, on()), 63);
   EXPECT_EQ(largestDisparity(p, ZoneSearch{0, 4, 127}), 63) << "off: the full range";
-  EXPECT_EQ(zoneSearchOptions().size(), 3u);
+  ZoneSearch guard = on();
+  guard.guardStep = 65;
+  EXPECT_THROW(validate(guard, p), Error);
+  EXPECT_EQ(zoneSearchOptions().size(), 4u);
+}
+
+TEST(ZoneSearch, TheRangeCarriesTheGuardOnlyWhenSomethingLiesBelowIt) {
+  const StereoParams p;  // 0..63
+  ZoneSearch z = on();
+  z.guardStep = 3;
+  EXPECT_EQ(zoneSearchRange(p, flat(16 * 40), z), (SearchRange{32, 32, 3}));
+  EXPECT_EQ(zoneSearchRange(p, flat(16 * 10), z), (SearchRange{0, 64})) << "the full range";
+  z.enabled = 0;
+  EXPECT_EQ(zoneSearchRange(p, flat(16 * 40), z), fullRange(p));
+  EXPECT_EQ(guardBelow(p, {32, 32, 3}).step, 3);
+  EXPECT_EQ(guardBelow(p, {32, 32, 3}).lowest, 0);
+  EXPECT_EQ(guardBelow(p, {32, 32}).step, 0);
+  EXPECT_THROW(checkSearchRange(p, {32, 32, -1}), Error);
+  EXPECT_THROW(checkSearchRange(p, {32, 32, kMaxGuardStep + 1}), Error);
+}
+
+// A far wall of repeating texture at 13 px, below a zone whose range starts
+// at 16: the full range finds 13 (outside the zone); the range alone finds
+// the texture's repeat at 13 + 40 = 53 (inside); the guard, checking 13,
+// 10, ... below the range, invalidates those pixels.
+TEST(ZoneSearch, TheGuardRemovesAFarTexturedPlaneBelowTheRange) {
+  const int w = 220, h = 60, disparity = 13, period = 40;
+  Rng rng(2024);
+  std::vector<int> tile(static_cast<std::size_t>(period) * h);
+  for (int& v : tile)
+    v = rng.uniform(40, 215);
+  TestImage left(w, h, PixelType::U8C1), right(w, h, PixelType::U8C1);
+  // Faint noise that does not repeat, so the full range has one best match.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w + disparity; ++x) {
+      const int v = tile[static_cast<std::size_t>(y * period + x % period)] + rng.uniform(-6, 6);
+      if (x < w) left.view().row<std::uint8_t>(y)[x] = static_cast<std::uint8_t>(v);
+      if (x - disparity >= 0)
+        right.view().row<std::uint8_t>(y)[x - disparity] = static_cast<std::uint8_t>(v);
+    }
+  for (int x = w - disparity; x < w; ++x)  // the right view's last columns: unseen
+    for (int y = 0; y < h; ++y)
+      right.view().row<std::uint8_t>(y)[x] = static_cast<std::uint8_t>(rng.uniform(0, 255));
+
+  const StereoParams p;  // 0..63
+  const std::vector<std::int16_t> thresholds = flat(16 * 20, w);
+  ZoneSearch z = on(4);
+  z.guardStep = 3;
+  const SearchRange guarded = zoneSearchRange(p, thresholds, z);
+  ASSERT_EQ(guarded, (SearchRange{16, 48, 3}));
+  const SearchRange plain{guarded.minDisparity, guarded.numDisparities};
+
+  const auto inside = [&](SearchRange range) {
+    StereoFrontend frontend(p, MedianParams{});
+    frontend.computeDisparity(left.view(), right.view(), range);
+    frontend.computeMask(thresholds);
+    int n = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        n += frontend.mask().row<std::uint8_t>(y)[x] != 0;
+    return n;
+  };
+  const int region = (w - 4 - 67) * (h - 8);  // the matcher's columns and rows
+  const int full = inside(fullRange(p)), limited = inside(plain), withGuard = inside(guarded);
+  EXPECT_LT(full, region / 100) << "the full range puts the wall outside";
+  EXPECT_GT(limited, region / 2) << "the range alone calls the wall inside";
+  EXPECT_LT(withGuard, region / 100) << "the guard removes it";
 }
 
 TEST(ZoneSearch, CheckSearchRangeRefusesRangesBelowTheMinimumOrOddSizes) {

@@ -39,11 +39,11 @@ def test_pipeline_results_equal_the_matcher_on_the_same_frame():
 
 
 def test_zone_search_matches_only_where_the_zone_can_be():
-    """zoneSearch=1: each frame searches from below its smallest threshold up
-    to the full range's top, exactly as a matcher over that range, with the
-    full range's invalid marker."""
+    """zoneSearch=1 (without the guard below the range): each frame searches
+    from below its smallest threshold up to the full range's top, exactly as a
+    matcher over that range, with the full range's invalid marker."""
     with horopter.Pipeline("synthetic", frames=3, backend="auto", zoneSearch=1,
-                           zoneMarginPx=4) as pipeline:  # 640x480, the default rig
+                           zoneMarginPx=4, zoneGuardStep=0) as pipeline:  # 640x480, the default rig
         frames = list(pipeline)
     assert len(frames) == 3
     for f in frames:

@@ -36,11 +36,19 @@ struct ZoneEvalResult {
   MaskAgreement fullVsTruth;       // the full-range mask against the true zone
   MaskAgreement zoneVsTruth;       // the zone-limited mask against the true zone
   double searchedDisparities = 0;  // summed over frames (mean: / frames)
+  // With the guard below the range on (ZoneSearch::guardStep > 0): the
+  // disparities it checked, summed over frames, and the zone-limited mask
+  // without it against the full-range mask (what the guard changes).
+  bool hasGuard = false;
+  double checkedDisparities = 0;
+  MaskAgreement unguardedVsFull;
+  MaskAgreement unguardedVsTruth;  // when hasTruth
 };
 
 // Runs both front ends (`full` over the full range of `stereo`, then over
-// zoneSearchRange of `thresholds`) on a rectified grey pair, masks both with
-// `thresholds` and adds the frame to `result`. `trueInside` (CV_8UC1, 255
+// zoneSearchRange of `thresholds`; with the guard on, a third over the same
+// range without it) on a rectified grey pair, masks them with `thresholds`
+// and adds the frame to `result`. `trueInside` (CV_8UC1, 255
 // inside) may be empty; `truthKnown` (CV_8UC1) limits the truth's pixels.
 class ZoneEvaluator {
  public:

@@ -59,6 +59,32 @@ HOROPTER_API void matchBlocks(const ConstImageView& left, const ConstImageView& 
                               const Backend& backend = scalarBackend(),
                               RowRange rows = RowRange::all());
 
+// A sparse check of disparities below the searched range, for zone-limited
+// matching (horopter/vision/zone_search.hpp): the disparities
+// minDisparity - k * step, k = 1, 2, ..., down to `lowest` (the configured
+// range's bottom), each costed as the range's are; a pixel whose winner one
+// of them would have beaten, or would have failed the winner's uniqueness
+// test, is invalid, and a right pixel whose best match one of them is gets
+// it as its winner (so that the left-right check sees it).
+// kernels/sad/sad_scalar.cpp states the exact rules. step 0 (the default):
+// off.
+struct HOROPTER_API BelowRangeGuard {
+  int step = 0;    // px between checked disparities; 0..kMaxGuardStep
+  int lowest = 0;  // the smallest disparity that may be checked, px
+};
+constexpr int kMaxGuardStep = 1024;
+
+// matchBlocks with the guard below the range: `guard.step` within
+// 0..kMaxGuardStep, and when it is on, `guard.lowest` within
+// [params.minDisparity - 1024, params.minDisparity]. With step 0, or lowest
+// = minDisparity (nothing below to check), the same as matchBlocks.
+HOROPTER_API void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                              const ConstImageView& texture, const StereoParams& params,
+                              const BelowRangeGuard& guard, const ImageView& disparity,
+                              const ImageView& winnerRight,
+                              const Backend& backend = scalarBackend(),
+                              RowRange rows = RowRange::all());
+
 // Invalidates pixels whose disparity disagrees with the right view's winner by
 // more than params.disp12MaxDiff (no-op when it is negative).
 HOROPTER_API void leftRightCheck(const ImageView& disparity, const ConstImageView& winnerRight,

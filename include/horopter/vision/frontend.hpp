@@ -64,8 +64,10 @@ class HOROPTER_API StereoFrontend {
   const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right);
   // The same over another search range (zone-limited matching: see
   // zone_search.hpp): the chain runs with the range's minDisparity and
-  // numDisparities, and invalid pixels hold the configured range's marker.
-  // The range must not start below the configured minDisparity.
+  // numDisparities (and the matcher checks the range's guardStep below it,
+  // down to the configured minDisparity), and invalid pixels hold the
+  // configured range's marker. The range must not start below the
+  // configured minDisparity.
   const Image& computeDisparity(const ConstImageView& left, const ConstImageView& right,
                                 SearchRange range);
 

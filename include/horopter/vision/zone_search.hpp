@@ -21,15 +21,24 @@
 #include "horopter/core/image.hpp"
 #include "horopter/core/option_table.hpp"
 #include "horopter/kernels/backend.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/kernels/stereo_params.hpp"
 
 namespace horopter {
 
 // The disparities one frame searches: minDisparity .. minDisparity +
-// numDisparities - 1 px (numDisparities a positive multiple of 16).
+// numDisparities - 1 px (numDisparities a positive multiple of 16), and the
+// guard below them: with guardStep > 0 the matcher also costs every
+// guardStep-th disparity below minDisparity, down to the configured range's
+// bottom, invalidates a pixel whose winner one of them would have beaten or
+// failed the uniqueness test for, and lets them win the right view's pixels
+// for the left-right check (kernels.hpp's BelowRangeGuard;
+// kernels/sad/sad_scalar.cpp states the rules). A range that starts at the
+// configured bottom has nothing below to check.
 struct HOROPTER_API SearchRange {
   int minDisparity = 0;
   int numDisparities = 64;
+  int guardStep = 0;  // px; 0: no guard
   bool operator==(const SearchRange&) const = default;
 };
 
@@ -37,9 +46,13 @@ struct HOROPTER_API SearchRange {
 HOROPTER_API SearchRange fullRange(const StereoParams& p);
 // p with its range replaced.
 HOROPTER_API StereoParams withRange(StereoParams p, SearchRange range);
+// The matcher's guard for `range` searched within `full` (off when
+// range.guardStep is 0).
+HOROPTER_API BelowRangeGuard guardBelow(const StereoParams& full, SearchRange range);
 // Throws horopter::Error unless `range` is a valid range for `full`'s other
 // parameters that starts at or above full.minDisparity (so that its values
-// stay above full's invalid marker).
+// stay above full's invalid marker), with a guardStep within
+// 0..kMaxGuardStep.
 HOROPTER_API void checkSearchRange(const StereoParams& full, SearchRange range);
 
 // What a front end does to a map it computed over `range`: the pixels that
@@ -56,6 +69,11 @@ struct HOROPTER_API ZoneSearch {
   // The largest disparity searched, px; 0: the full range's largest
   // (minDisparity + numDisparities - 1). Above it: nearer the cameras.
   int maxDisparity = 0;
+  // The guard below the range (SearchRange::guardStep), px between the
+  // disparities it checks; 0: off. 1 (every disparity below the range, each
+  // a box-filtered cost without decisions): sparser steps miss the narrow
+  // cost minima of fine texture (kernels/README.md, "Zone-limited ranges").
+  int guardStep = 1;
 };
 
 // Every option of ZoneSearch, declared once (flag, unit, range, help).
@@ -74,8 +92,9 @@ HOROPTER_API int largestDisparity(const StereoParams& full, const ZoneSearch& z)
 // can reach the smallest threshold, less the margin, never below the full
 // range's minDisparity; the size is rounded up to a multiple of 16 by
 // lowering the bottom (so the top, and with it the band on the left that
-// the matcher leaves invalid, stay where they are). With zone search off,
-// or no thresholds, the full range.
+// the matcher leaves invalid, stay where they are); its guardStep is the
+// zone search's when the range starts above the full range's bottom. With
+// zone search off, or no thresholds, the full range.
 HOROPTER_API SearchRange zoneSearchRange(const StereoParams& full,
                                          std::span<const std::int16_t> thresholds,
                                          const ZoneSearch& z);

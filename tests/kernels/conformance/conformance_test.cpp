@@ -491,6 +491,119 @@ void conformMatchBlocks(const Backend& backend) {
   }
 }
 
+// Matching with the guard below the range (zone-limited matching): steps
+// from 1 up to past the gap, uniqueness on and off, texture on and off,
+// raw and prefiltered inputs, checked disparities below zero (whose windows
+// leave the right image near its right edge), blocks past the AVX2 16-bit
+// bound (its scalar fallback), and stripes of rows. The scenes put the
+// true match below the range, so that the guard has pixels to remove: the
+// sweep also asserts that it removed some.
+void conformMatchBlocksGuarded(const Backend& backend) {
+  struct GuardCase {
+    int w, h;
+    StereoParams p;
+    BelowRangeGuard guard;
+    Pattern pattern;
+    int shift;
+    bool prefiltered;
+  };
+  std::vector<GuardCase> cases;
+  int k = 0;
+  for (int step : {1, 2, 3, 5, 40}) {
+    for (int ratio : {0, 15, 100}) {
+      StereoParams p;
+      p.minDisparity = 16 + k % 3;
+      p.numDisparities = (k % 2 == 0) ? 48 : 16;
+      p.blockSize = (k % 3 == 0) ? 5 : 9;
+      p.uniquenessRatio = ratio;
+      p.textureThreshold = (k % 4 == 0) ? 0 : 10;
+      cases.push_back({97 + 13 * (k % 5),
+                       23 + k % 3,
+                       p,
+                       {step, k % 2 == 0 ? 0 : 7},
+                       kPatterns[k % 5],
+                       11 + k % 4,
+                       k % 3 != 2});
+      ++k;
+    }
+  }
+  for (int step : {1, 4, 7}) {  // checked disparities below zero
+    StereoParams p;
+    p.minDisparity = 8;
+    p.numDisparities = 16;
+    p.blockSize = 7;
+    cases.push_back({83, 19, p, {step, -20}, Pattern::Textured, -6, true});
+  }
+  for (int blockSize : {17, 33}) {  // past the AVX2 bound: its scalar fallback
+    StereoParams p;
+    p.minDisparity = 10;
+    p.numDisparities = 16;
+    p.blockSize = blockSize;
+    p.textureThreshold = 0;
+    cases.push_back({blockSize + 60, blockSize + 5, p, {2, 0}, Pattern::Textured, 6, false});
+  }
+  {
+    StereoParams p;  // nothing below to check
+    p.minDisparity = 4;
+    p.numDisparities = 16;
+    cases.push_back({61, 17, p, {3, 4}, Pattern::Random, 2, true});
+  }
+  long long removed = 0, rightChanged = 0;
+  for (const GuardCase& c : cases) {
+    const int w = c.w, h = c.h;
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + patternName(c.pattern) +
+                 ", shift " + std::to_string(c.shift) + ", guard step " +
+                 std::to_string(c.guard.step) + " down to " + std::to_string(c.guard.lowest) +
+                 (c.prefiltered ? ", prefiltered" : ", raw") + ", " + describe(c.p));
+    StereoPair pair = patternPair(w, h, c.pattern, c.shift,
+                                  static_cast<std::uint64_t>(w * 31 + h + c.shift + c.guard.step));
+    TestImage texture(w, h, PixelType::U8C1);
+    if (c.prefiltered) {
+      TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
+      prefilterXSobel(pair.left.view(), c.p.preFilterCap, lf.view(), texture.view(),
+                      scalarBackend());
+      prefilterXSobel(pair.right.view(), c.p.preFilterCap, rf.view(), {}, scalarBackend());
+      pair = {std::move(lf), std::move(rf)};
+    } else {
+      prefilterXSobel(pair.left.view(), c.p.preFilterCap, {}, texture.view(), scalarBackend());
+    }
+    TestImage refDisparity(w, h, PixelType::S16C1), refWinner(w, h, PixelType::S16C1);
+    matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, c.guard,
+                refDisparity.view(), refWinner.view(), scalarBackend());
+    TestImage plain(w, h, PixelType::S16C1), plainWinner(w, h, PixelType::S16C1);
+    matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, plain.view(),
+                plainWinner.view(), scalarBackend());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        removed +=
+            plain.view().row<std::int16_t>(y)[x] != refDisparity.view().row<std::int16_t>(y)[x];
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        rightChanged +=
+            plainWinner.view().row<std::int16_t>(y)[x] != refWinner.view().row<std::int16_t>(y)[x];
+    for (const Layout& layout : kLayouts) {
+      SCOPED_TRACE(std::string("layout ") + layout.name);
+      const TestImage left = pair.left.clone(layout), right = pair.right.clone(layout);
+      const TestImage tex = texture.clone(layout);
+      TestImage disparity(w, h, PixelType::S16C1, layout), winner(w, h, PixelType::S16C1, layout);
+      disparity.fillBytes(0x77);
+      winner.fillBytes(0x77);
+      // Two stripes of rows, as the front end's threads call it.
+      for (const RowRange rows : {RowRange{0, h / 3}, RowRange{h / 3, h}})
+        matchBlocks(left.view(), right.view(), tex.view(), c.p, c.guard, disparity.view(),
+                    winner.view(), backend, rows);
+      CONFORM(sameImage(refDisparity.view(), disparity.view()), "disparity");
+      CONFORM(sameImage(refWinner.view(), winner.view()), "winnerRight");
+      CONFORM(disparity.canariesIntact(), "disparity");
+      CONFORM(winner.canariesIntact(), "winnerRight");
+      CONFORM(untouched(pair.left, left, "left"), "left");
+      CONFORM(untouched(pair.right, right, "right"), "right");
+    }
+  }
+  EXPECT_GT(removed, 0) << "the guard removed no pixel in any case: the sweep tests nothing";
+  EXPECT_GT(rightChanged, 0) << "the guard changed no right winner: the sweep tests nothing";
+}
+
 // ---------------------------------------------------------------------------
 // Left-right check
 
@@ -701,6 +814,9 @@ TEST_P(Conformance, PrefilterNormalized) {
 TEST_P(Conformance, MatchBlocks) {
   conformMatchBlocks(backend());
 }
+TEST_P(Conformance, MatchBlocksGuardBelowRange) {
+  conformMatchBlocksGuarded(backend());
+}
 TEST_P(Conformance, LeftRightCheck) {
   conformLeftRightCheck(backend());
 }
@@ -722,8 +838,9 @@ namespace wrong {
 
 // Matching one 1/16 px off at a single pixel.
 void matchOffByOne(const ConstImageView& l, const ConstImageView& r, const ConstImageView& t,
-                   const StereoParams& p, const ImageView& d, const ImageView& wr, RowRange rows) {
-  scalarBackend().kernels->matchBlocks(l, r, t, p, d, wr, rows);
+                   const StereoParams& p, const BelowRangeGuard& g, const ImageView& d,
+                   const ImageView& wr, RowRange rows) {
+  scalarBackend().kernels->matchBlocks(l, r, t, p, g, d, wr, rows);
   if (rows.begin <= d.height / 2 && d.height / 2 < rows.end)
     d.row<std::int16_t>(d.height / 2)[d.width / 2] += 1;
 }
@@ -974,7 +1091,8 @@ TEST_P(Conformance, FrontendOnSyntheticScenes) {
 
 // Zone-limited matching (zone_search.hpp): the ranges the zone gives, from
 // the horopter thresholds of fixations across the range, searched by each
-// backend's front end, equal the reference front end over the same range.
+// backend's front end, with and without the guard below the range, equal
+// the reference front end over the same range.
 TEST_P(Conformance, FrontendZoneLimitedRanges) {
   struct Setting {
     int width, height;
@@ -986,22 +1104,29 @@ TEST_P(Conformance, FrontendZoneLimitedRanges) {
     StereoParams p;  // defaults: 0..63, block 9
     ZoneSearch zone;
     zone.enabled = 1;
+    zone.guardStep = 0;
+    settings.push_back({193, 41, p, zone});
+    zone.guardStep = 3;
     settings.push_back({193, 41, p, zone});
     zone.marginPx = 0;
     zone.maxDisparity = 79;  // past the full range's top (near hands)
+    zone.guardStep = 1;
     settings.push_back({161, 33, p, zone});
     p.numDisparities = 96;
     p.blockSize = 5;
     zone.marginPx = 9;
     zone.maxDisparity = 127;
+    zone.guardStep = 2;
     settings.push_back({641, 17, p, zone});
-    p.minDisparity = -8;
+    p.minDisparity = -8;  // checked disparities below zero
     p.numDisparities = 48;
     zone.maxDisparity = 0;
     zone.marginPx = 2;
+    zone.guardStep = 5;
     settings.push_back({97, 29, p, zone});
   }
   int n = 0;
+  long long guarded = 0;  // pixels the guard changed in the reference
   for (const Setting& s : settings) {
     for (double fixation : {0.25, 0.5, 0.8}) {
       const int top = largestDisparity(s.p, s.zone);
@@ -1029,8 +1154,18 @@ TEST_P(Conformance, FrontendZoneLimitedRanges) {
       ref.computeMask(thresholds);
       test.computeMask(thresholds);
       CONFORM(sameImage(ref.mask().view(), test.mask().view()), "mask");
+      if (range.guardStep > 0) {
+        StereoFrontend plain(s.p, MedianParams{}, reference());
+        plain.computeDisparity(pair.left.view(), pair.right.view(),
+                               {range.minDisparity, range.numDisparities});
+        const ConstImageView a = plain.cleanedDisparity().view(), b = ref.cleanedDisparity().view();
+        for (int y = 0; y < a.height; ++y)
+          for (int x = 0; x < a.width; ++x)
+            guarded += a.row<std::int16_t>(y)[x] != b.row<std::int16_t>(y)[x];
+      }
     }
   }
+  EXPECT_GT(guarded, 0) << "the guard changed no pixel: its settings test nothing";
 }
 
 // Random points of the whole parameter space, random sizes and layouts,

@@ -91,13 +91,13 @@ TEST(OpenClFrontend, FramesInFlightEqualTheScalarFrontendInOrder) {
   }
 }
 
-// Zone-limited matching: frames in flight, each over its own search range,
-// equal the scalar front end over the same ranges (the invalid marker
-// rewritten as the configured range's).
+// Zone-limited matching: frames in flight, each over its own search range
+// (two with the guard below the range), equal the scalar front end over the
+// same ranges (the invalid marker rewritten as the configured range's).
 TEST(OpenClFrontend, EachFrameSearchesItsOwnRange) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(4);
-  const SearchRange ranges[] = {{16, 48}, {0, 64}, {32, 32}, {8, 48}};
+  const SearchRange ranges[] = {{16, 48, 3}, {0, 64}, {32, 32, 1}, {8, 48}};
   for (const Setting& s : settings()) {
     if (s.stereo.minDisparity != 0 || s.stereo.numDisparities < 32) continue;
     SCOPED_TRACE(s.what);
