@@ -199,6 +199,17 @@ void assignGated(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOpt
   }
 }
 
+bool stereoBlindAt(cv::Point2f predicted, double handDisparity, double validFraction, double fw,
+                   const TrackerOptions& o) {
+  // Only where the front end indeed found no depth: a blob of clutter that
+  // block matching pulled forward beside a near arm is not blind.
+  if (validFraction >= o.blindValidFraction) return false;
+  const double d = handDisparity;
+  const bool outOfRightView = d > 0 && predicted.x < d + o.blindBandFaces * fw;
+  const bool tooNear = d > 0 && o.maxDisparityPx > 0 && d > o.blindNearFraction * o.maxDisparityPx;
+  return outOfRightView || tooNear || o.blindTextureless > 0;
+}
+
 void followBlindWhereMissed(const std::array<HandTrack, 2>& hands, HandFrame& f,
                             const std::function<bool(int)>& follow) {
   for (int k = 0; k < 2; ++k) {

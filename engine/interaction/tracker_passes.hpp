@@ -141,6 +141,14 @@ HandFrame startHandFrame(const ConstantVelocityTrack& head, float faceWidth, con
 // one candidate per track and one track per candidate.
 void assignGated(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOptions& o);
 
+// Whether stereo is blind at a missed hand's prediction: the front end
+// found under blindValidFraction valid disparities there (`validFraction`),
+// and the hand is left of what the right view sees or nearer than the range
+// by its last disparity (`handDisparity`, 0: unknown), or, with
+// blindTextureless, for any cause (a smooth hand in dim light).
+bool stereoBlindAt(cv::Point2f predicted, double handDisparity, double validFraction, double fw,
+                   const TrackerOptions& o);
+
 // Each tracked hand missed so far is tried with `follow(k)` (its look, where
 // stereo is blind).
 void followBlindWhereMissed(const std::array<HandTrack, 2>& hands, HandFrame& f,

@@ -102,6 +102,10 @@ std::span<const NumberOption<TrackerOptions>> trackerOptions() {
        &O::blindFollowS},
       {"blindMinScore", "--blind-min-score", "", -1, 1,
        "... where the look correlates by at least this", &O::blindMinScore},
+      {"blindTextureless", "--blind-textureless", "", 0, 1,
+       "1: a missed hand is blind wherever the front end found no disparity around it, not "
+       "only out of the right view or nearer than the range (measured worse: off)",
+       &O::blindTextureless},
   };
   return table;
 }
@@ -141,14 +145,10 @@ bool BodyTracker::followBlind(int k, const StereoFrame& frame, cv::Point2f head,
     return false;
   detail::HandTrack& hand = m.subject.hands[static_cast<std::size_t>(k)];
   const cv::Point2f predicted = hand.track->position();
-  const double d = m.handDisparity[k];
-  const bool outOfRightView = d > 0 && predicted.x < d + o.blindBandFaces * fw;
-  const bool tooNear = d > 0 && o.maxDisparityPx > 0 && d > o.blindNearFraction * o.maxDisparityPx;
-  // ... and where the front end indeed found no depth: a blob of clutter
-  // that block matching pulled forward beside a near arm is not blind.
   const int third = std::max(1, static_cast<int>(fw / 3));
-  if ((!outOfRightView && !tooNear) ||
-      detail::validDisparityFraction(frame.disparity, predicted, third) >= o.blindValidFraction)
+  if (!detail::stereoBlindAt(predicted, m.handDisparity[k],
+                             detail::validDisparityFraction(frame.disparity, predicted, third), fw,
+                             o))
     return false;
   const std::optional<cv::Point2f> at =
       m.looks[k].find(frame.leftGrey, predicted, hand.lastSeen,

@@ -357,6 +357,29 @@ TEST(TrackerPasses, GatedAssignmentKeepsToTheSideAndTheStepLimit) {
   EXPECT_TRUE(g.steps[0].updated);
 }
 
+TEST(TrackerPasses, StereoIsBlindOnlyWhereTheFrontEndFoundNoDepth) {
+  TrackerOptions o;  // band 0.5 faces (30 px), near above 0.85 of the range, valid under 0.5
+  o.maxDisparityPx = 95;
+  ASSERT_EQ(o.blindTextureless, 0);  // off by default
+  const cv::Point2f band(90, 300), middle(300, 300);
+  // Left of d + half a face (70 + 30 = 100 px) the right view does not see.
+  EXPECT_TRUE(stereoBlindAt(band, 70, 0.1, kFw, o));
+  EXPECT_FALSE(stereoBlindAt({101, 300}, 70, 0.1, kFw, o));
+  // Nearer than the range: the last disparity above 0.85 of 95 (80.75 px).
+  EXPECT_TRUE(stereoBlindAt(middle, 81, 0.1, kFw, o));
+  EXPECT_FALSE(stereoBlindAt(middle, 80, 0.1, kFw, o));
+  EXPECT_FALSE(stereoBlindAt(middle, 0, 0.1, kFw, o));  // the last disparity unknown
+  // Wherever the front end found depth, nothing is blind.
+  EXPECT_FALSE(stereoBlindAt(band, 70, 0.5, kFw, o));
+  EXPECT_FALSE(stereoBlindAt(middle, 90, 0.6, kFw, o));
+  // With blindTextureless, missing depth alone is blindness (a smooth hand
+  // in dim light has none, wherever it is).
+  o.blindTextureless = 1;
+  EXPECT_TRUE(stereoBlindAt(middle, 60, 0.49, kFw, o));
+  EXPECT_TRUE(stereoBlindAt(middle, 0, 0.0, kFw, o));
+  EXPECT_FALSE(stereoBlindAt(middle, 60, 0.5, kFw, o));
+}
+
 TEST(TrackerPasses, OnlyMissedTracksAreFollowedByTheirLook) {
   std::array<HandTrack, 2> hands = {handAt({420, 380}, 0.0), handAt({220, 380}, 0.0)};
   const std::vector<HandDetection> none;

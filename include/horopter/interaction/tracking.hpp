@@ -99,6 +99,12 @@ struct HOROPTER_API TrackerOptions {
   double blindPatchFaces = 0.3;
   double blindSearchFaces = 0.5;
   double blindMinScore = 0.7;
+  // 1: a missed hand is also blind where the front end found no disparity
+  // around its prediction for another cause (no texture: a smooth hand in
+  // dim light or noise), not only out of the right view or too near. Off:
+  // on tuning seeds 10272-10311 it turned 41 no-disparity part-frames into
+  // 63 "elsewhere" ones (false looks), 6.29 -> 6.40 % region loss.
+  double blindTextureless = 0;
   // The front end's largest disparity, px (0: unknown, no near blindness).
   double maxDisparityPx = 0;
   // A candidate whose mean disparity is at least this fraction of
