@@ -30,8 +30,8 @@ void checkOneYamlDocument(const std::string& text, const std::string& path) {
   }
   // Lines as OpenCV's reader sees them: split at '\n', each ending at its
   // first '\r' (OpenCV reads on from the next line there, "\r\n" included).
-  bool begun = false;           // the first field has been seen
-  std::size_t rootColumn = 0;   // its column
+  bool begun = false;          // the first field has been seen
+  std::size_t rootColumn = 0;  // its column
   std::size_t rootLine = 0;
   std::size_t documentEnd = 0;  // the line of a "..." seen, 0 if none
   std::size_t lineNumber = 0;
@@ -69,8 +69,7 @@ void checkOneYamlDocument(const std::string& text, const std::string& path) {
       rootLine = lineNumber;
       continue;
     }
-    if (content.substr(0, 3) == "---")
-      refuse(path, lineNumber, "a second YAML document ('---')");
+    if (content.substr(0, 3) == "---") refuse(path, lineNumber, "a second YAML document ('---')");
     if (column < rootColumn) {
       std::ostringstream what;
       what << "indented " << column << " spaces, less than the first field's " << rootColumn
