@@ -7,28 +7,58 @@
 #                state between threads, labels pipeline (the scheduler, the
 #                stages), frontend (the vision library: front end, thread
 #                pool, capture) and hardware (the drivers' worker threads
-#                against the simulators); only their four test binaries are
-#                built. Not the CLI tests, nor the bindings (they need
-#                libhoropter and Python built with TSan as well).
+#                against the simulators), their four test binaries; and the
+#                Python module's threaded pytest files. Not the CLI tests.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup.sh"
 jobs="$(nproc 2>/dev/null || echo 2)"
 if [ "${1:-}" = "--thread" ]; then
   "$root/scripts/build.sh" --thread horopter_pipeline_tests horopter_app_tests \
-    horopter_vision_tests horopter_hardware_tests
+    horopter_vision_tests horopter_hardware_tests horopter_python
   # What is suppressed, and why, is in the file; second_deadlock_stack for
   # lock-order reports.
   export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$root/scripts/tsan.supp"
   cd "$root/build-tsan"
+  # OpenCV's own threads are oneTBB's (not built with TSan): TSan cannot see
+  # TBB hand a cv::parallel_for_ body to a worker, and reports the worker's
+  # reads of the caller's stack without a worker stack to suppress by (notes
+  # in scripts/tsan.supp). Where a test renders the synthetic scene (cv::
+  # parallel_for_ over its textures and rasteriser), it runs on one CPU
+  # (taskset): oneTBB, and so OpenCV, then starts no worker; Horopter's own
+  # threads are as many as ever (std::thread::hardware_concurrency ignores
+  # the affinity mask) and TSan checks them the same way.
+  one_cpu=(taskset -c "$(taskset -pc $$ | sed 's/.*: *//; s/[-,].*//')")
   echo "test: ctest (ThreadSanitizer: pipeline, frontend, hardware; no CLI tests)"
-  # Left out: Capture.SyntheticRunIsDeterministicAcrossThreadsAndDepth. Its
-  # synthetic scene renders with cv::parallel_for_ on oneTBB (not built with
-  # TSan), whose hand-offs TSan cannot see; the reports (worker reads of the
-  # caller's stack, without a worker stack to suppress by) are in
-  # scripts/tsan.supp's notes. To do: run it with OpenCV's threads off.
   ctest --output-on-failure -j "$jobs" -L "pipeline|frontend|hardware" -LE cli \
     -E "^Capture\.SyntheticRunIsDeterministicAcrossThreadsAndDepth$"
+  "${one_cpu[@]}" ctest --output-on-failure \
+    -R "^Capture\.SyntheticRunIsDeterministicAcrossThreadsAndDepth$"
+  # The Python module built with TSan, its pytest files on the bindings'
+  # threads run by the interpreter it was built for (python3, not built with
+  # TSan: libtsan is preloaded, and TSan sees the GIL's pthread locks). Each
+  # renders the synthetic scene (conftest.py): one CPU, as above.
+  # The files whose tests run Horopter's threads: test_threads (Python
+  # threads in kernels at once, the GIL released), test_pipeline (the
+  # scheduler's stages, Python pulling frames), test_kernels (the front end
+  # with two threads, every backend). Left out: the files on one thread (the
+  # arrays, geometry, calibration and file formats, the StereoBM setters,
+  # metadata, stubs, examples: each about as slow under TSan as the three
+  # above, about 330 s all told on the shared machine), those that run the
+  # CLI or the C tool (not built here), and test_eval_cluster (Dask worker
+  # processes).
+  echo "test: pytest (ThreadSanitizer: the Python module's threads)"
+  module_dir="$root/build-tsan/bindings/python"
+  # The TSan runtime the module was linked with, loaded first.
+  tsan_runtime="$(ldd "$module_dir"/horopter*.so | awk '/libtsan/ { print $3; exit }')"
+  [ -n "$tsan_runtime" ] || { echo "test: no libtsan in $module_dir's module" >&2; exit 1; }
+  python="$(sed -n 's/^_Python_EXECUTABLE:INTERNAL=//p' "$root/build-tsan/CMakeCache.txt")"
+  # --capture=sys: a TSan report (written to file descriptor 2 as the
+  # process stops) is not swallowed by pytest's capture.
+  (cd "$root/bindings/python/tests" &&
+    "${one_cpu[@]}" env PYTHONPATH="$module_dir" PYTHONDONTWRITEBYTECODE=1 \
+      HOROPTER_SOURCE_DIR="$root" LD_PRELOAD="$tsan_runtime" "${python:-python3}" -m pytest \
+      -q --capture=sys -p no:cacheprovider -rs test_threads.py test_pipeline.py test_kernels.py)
   exit 0
 fi
 "$root/scripts/build.sh" "$@"

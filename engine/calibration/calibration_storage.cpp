@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "calibration/yaml_structure.hpp"
 #include "horopter/core/error.hpp"
 
 namespace horopter::detail {
@@ -26,12 +27,15 @@ std::string readText(const std::string& path) {
 
 // The text as OpenCV's in-memory reader takes it: XML, JSON and YAML with
 // its "%YAML" directive as they are, any other text as YAML (ROS's
-// camera_info files start with their first field).
-std::string withFormatDirective(const std::string& text) {
+// camera_info files start with their first field). YAML is checked first
+// for what hangs OpenCV 4.6's parser (yaml_structure.hpp).
+std::string forOpenCv(const std::string& text, const std::string& path) {
   const std::size_t start = text.find_first_not_of(" \t\r\n");
-  if (start != std::string::npos && (text.compare(start, 5, "%YAML") == 0 ||
-                                     text.compare(start, 5, "<?xml") == 0 || text[start] == '{'))
-    return text;
+  const bool xmlOrJson =
+      start != std::string::npos && (text.compare(start, 5, "<?xml") == 0 || text[start] == '{');
+  if (xmlOrJson) return text;
+  checkOneYamlDocument(text, path);
+  if (start != std::string::npos && text.compare(start, 5, "%YAML") == 0) return text;
   return "%YAML:1.0\n" + text;
 }
 
@@ -48,8 +52,7 @@ CalibrationStorage::CalibrationStorage(const std::string& path) : path_(path) {
     if (compressed)
       fs_.open(path, cv::FileStorage::READ);
     else
-      fs_.open(withFormatDirective(readText(path)),
-               cv::FileStorage::READ | cv::FileStorage::MEMORY);
+      fs_.open(forOpenCv(readText(path), path), cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
     throw Error("calibration file '" + path + "' is not valid OpenCV YAML/XML: " + e.msg);
   } catch (const Error&) {

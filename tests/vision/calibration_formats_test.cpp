@@ -464,6 +464,40 @@ TEST(CalibrationFormats, MalformedRosFilesNameTheField) {
   expectErrorMentions(errorOf([&] { loadStereoCalibration(dir); }), {"K1", "principal point"});
 }
 
+// Text on which OpenCV 4.6's YAML parser loops forever (after its first
+// document it skips three characters, and a lone '-' where it lands spins
+// it): refused before OpenCV sees it, naming the line. The first input is
+// what tests/fuzz/calibration_file_fuzz.cpp found, the second the smallest
+// trigger, the last a later find (without the check, each but the NUL byte's
+// hangs this test).
+TEST(CalibrationFormats, TextThatWouldHangOpenCvsYamlParserIsRefused) {
+  const std::string dir = scratchDir("yaml_hang");
+  const std::string path = dir + "/stereo.yml";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"%YAML:1.0\n a:[3,\n   -]\n-\n]", {"line 4", "indented 0 spaces", "first field's 1"}},
+      {"%YAML:1.0\na: 1\n...\n-\n", {"line 4", "after the document end '...' of line 3"}},
+      {"a: 1\n...\n-\n", {"line 3", "document end"}},  // no directive: the loader adds one
+      {"%YAML:1.0\n---\nK1: 1\n---\n-\n", {"line 4", "a second YAML document"}},
+      {"%YAML:1.0\n--- K1: 1\n-\n", {"line 3", "first field's 4"}},
+      {std::string("%YAML:1.0\nK1: 1\0\n-\n", 17), {"NUL byte", "offset 15"}},
+      // OpenCV drops what follows a '\r' on its line: "rix" is no field.
+      {"\rrix\n  a:[\n    -]\n-\na", {"line 4", "first field's 2 (line 2)"}},
+  };
+  for (const auto& [text, words] : cases) {
+    writeText(path, text);
+    expectErrorMentions(errorOf([&] { loadStereoCalibration(path); }), words);
+  }
+  // A calibration that ends with "..." (and a comment after it), as some
+  // YAML writers end a document, still loads.
+  const StereoCalibration rig = syntheticRig();
+  writeOpenCvFile(path, rig, true, "image_size");
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  writeText(path, text.str() + "...\n# end\n");
+  expectSameMatrices(rig, loadStereoCalibration(path), 0.0);
+}
+
 TEST(CalibrationFormats, AFolderWithoutACalibrationSaysWhatItLookedFor) {
   const std::string dir = scratchDir("empty");
   expectErrorMentions(errorOf([&] { loadStereoCalibration(dir); }),

@@ -39,7 +39,7 @@ std::string viewsDir() {
 std::vector<StereoImagePair> loadViews(const std::string& dir) {
   std::vector<StereoImagePair> pairs;
   for (int i = 1; i <= 14; ++i) {
-    char id[8];
+    char id[12];  // room for any int: gcc -O1 (the sanitizer builds) cannot bound i
     std::snprintf(id, sizeof id, "%02d", i);
     const std::string l = dir + "/left" + id + ".jpg", r = dir + "/right" + id + ".jpg";
     if (!isFile(l) || !isFile(r)) continue;
