@@ -52,10 +52,14 @@ std::unique_ptr<PtuHead> openHead(SimPtu& sim, PtuHeadOptions o = {}) {
                                    o);
 }
 
-// One bad reply: counted as corrupt, retried, the head keeps measuring.
-template <typename H>
-void expectOneCountedFault(const H& head, const std::string& faultText) {
+// One bad reply, sent by `inject`: counted as corrupt, retried, the head
+// keeps measuring. The health before is read before the injection: the
+// driver's thread may take the reply before this thread looks (it did under
+// ThreadSanitizer), and then no later count would ever exceed it.
+template <typename H, typename Inject>
+void expectOneCountedFault(const H& head, Inject inject, const std::string& faultText) {
   const HeadHealth before = head.health();
+  inject();
   ASSERT_TRUE(eventuallyWithSaneAngles(head, [&] {
     const HeadHealth h = head.health();
     return h.corruptReplies > before.corruptReplies && h.exchanges > before.exchanges + 2;
@@ -69,17 +73,18 @@ void expectOneCountedFault(const H& head, const std::string& faultText) {
 TEST(DynamixelMalformedReply, StatusWithoutErrorByteIsAFaultNotACrash) {
   SimDynamixelBus bus({1, 2});
   auto head = openHead(bus);
-  bus.injectStatus({}, 1);  // valid CRC, instruction 0x55, no parameters at all
-  expectOneCountedFault(*head, "no ERROR byte");
+  // A valid CRC, instruction 0x55, no parameters at all.
+  const auto noErrorByte = [&] { bus.injectStatus({}, 1); };
+  expectOneCountedFault(*head, noErrorByte, "no ERROR byte");
 }
 
 TEST(DynamixelMalformedReply, EmptyOrShortPresentPositionIsAFault) {
   SimDynamixelBus bus({1, 2});
   auto head = openHead(bus);
-  bus.injectStatus({0x00}, 1);  // ERROR byte only: no position
-  expectOneCountedFault(*head, "0 data bytes, expected 4");
-  bus.injectStatus({0x00, 0x34, 0x12}, 1);  // 2 of 4 bytes
-  expectOneCountedFault(*head, "2 data bytes, expected 4");
+  const auto errorByteOnly = [&] { bus.injectStatus({0x00}, 1); };  // no position
+  expectOneCountedFault(*head, errorByteOnly, "0 data bytes, expected 4");
+  const auto twoOfFourBytes = [&] { bus.injectStatus({0x00, 0x34, 0x12}, 1); };
+  expectOneCountedFault(*head, twoOfFourBytes, "2 data bytes, expected 4");
 }
 
 TEST(DynamixelMalformedReply, OutOfRangeTicksNeverBecomeAnAngle) {
@@ -87,8 +92,8 @@ TEST(DynamixelMalformedReply, OutOfRangeTicksNeverBecomeAnAngle) {
   DynamixelHeadOptions o;
   o.linkLostAfter = 3;
   auto head = openHead(bus, o);
-  bus.injectStatus({0x00, 0x00, 0x20, 0x00, 0x00}, 1);  // 8192 ticks: two turns
-  expectOneCountedFault(*head, "8192");
+  const auto twoTurns = [&] { bus.injectStatus({0x00, 0x00, 0x20, 0x00, 0x00}, 1); };  // 8192 ticks
+  expectOneCountedFault(*head, twoTurns, "8192");
   // 0x7FFFFFFF ticks for good: never an angle (3 294 195 rad before), the link goes down.
   bus.injectStatus({0x00, 0xFF, 0xFF, 0xFF, 0x7F}, 1000000);
   ASSERT_TRUE(eventuallyWithSaneAngles(*head, [&] { return !head->health().linkUp; }));
@@ -103,8 +108,8 @@ TEST(PtuMalformedReply, NonFiniteOrHugeNumbersAreFaults) {
   for (const char* reply : {"* inf", "* -inf", "* nan", "* infinity", "* 1e300",
                             "* 9223372036854775807", "* 12abc", "*"}) {
     SCOPED_TRACE(reply);
-    sim.injectReply(reply, 1);
-    expectOneCountedFault(*head, "");
+    const auto send = [&] { sim.injectReply(reply, 1); };
+    expectOneCountedFault(*head, send, "");
   }
 }
 
