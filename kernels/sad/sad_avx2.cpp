@@ -40,7 +40,9 @@
 //      or), entering and leaving rows interleaved by unpacking within 128-bit
 //      lanes and turned into G * (in - out) by maddubs with (G, -G), so group 2p
 //      holds d = 32p + (0..7, 16..23) and group 2p + 1 d = 32p + (8..15,
-//      24..31); an odd last group takes 16-bit lanes in natural order. Every
+//      24..31); an odd last group takes 16-bit lanes in natural order,
+//      against left pixels widened once per row and broadcast from memory
+//      (about 1.2x a paired group's instructions per disparity). Every
 //      16 pixels, their 16 cost vectors are transposed in registers and
 //      stored by lane (undoing the pair order): costs[k][i].
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
@@ -59,9 +61,19 @@
 //      cost" around each row). The least key over increasing k, as above,
 //      keeps the smallest d on ties, as the reference does.
 //
-//   4. Guard below the range (zone-limited matching, when on): per checked
-//      disparity, 16-bit column sums of |L - R| slide down the rows as the
-//      others do (16 columns per vector, the right pixels read in place),
+//   4. Guard below the range (zone-limited matching, when on). With step 1
+//      (the default) the checked disparities are contiguous: the sweep takes
+//      them as ceil(K / 16) more groups below the range's (lanes k < 0,
+//      rows -1, -2, ... of costs; the reversed right rows are padded in
+//      front for their reads past the image's right edge). After each
+//      tile's sweep, fixGuardTile writes "no cost" where a lane is not
+//      checked (below `lowest`) or does not count (its window reaches past
+//      the right image), and their least per pixel for finishLeft; the
+//      right winners take their least key over those lanes (leastKeys, the
+//      smallest g on ties) where its cost is <= the range's least. With a
+//      larger step: per checked disparity, 16-bit column sums of |L - R|
+//      slide down the rows as the others do (16 columns per vector, the
+//      right pixels read in place),
 //      and each row's window sums (2r + 1 column loads per 16 pixels) fold
 //      into the least per pixel, 65535 where none counts. finishLeft then
 //      invalidates a pixel whose least is <= its uniqueness limit (the
@@ -287,12 +299,20 @@ constexpr int rowEntries(int n) {
   return n + (96 - n % 64) % 64;
 }
 
+// The 16-lane groups a guard of step 1 adds to the sweep below the range's
+// (its checked disparities are contiguous); 0 without a guard, or with a
+// larger step, whose checked disparities get separate sums.
+inline int foldedGuardGroups(const StereoParams& params, const BelowRangeGuard& guard) {
+  return guard.step == 1 ? (guardCount(params, guard) + kLanes - 1) / kLanes : 0;
+}
+
 class Matcher {
   // decideLeft and decideRight take 4 blocks of 16 pixels per pass.
   static constexpr int kChunk = 4 * kLanes;
   // Pixels per tile of a row pass (a multiple of kChunk).
   static constexpr int kTile = 2 * kChunk;
-  static constexpr int kMaxGroups = 1024 / kLanes;  // numDisparities <= 1024
+  // numDisparities <= 1024, and as many below the range for a folded guard.
+  static constexpr int kMaxGroups = 2048 / kLanes;
 
  public:
   HOROPTER_AVX2_TARGET Matcher(const ConstImageView& left, const ConstImageView& right,
@@ -311,6 +331,9 @@ class Matcher {
         count_(params.numDisparities),
         groups_(params.numDisparities / kLanes),
         minD_(params.minDisparity),
+        guardGroups_(foldedGuardGroups(params, guard)),
+        sweepGroups_(groups_ + guardGroups_),
+        sweepMin_(minD_ - guardGroups_ * kLanes),
         x0_(region.x0),
         x1_(region.x1),
         xa_(region.x0 - r_),
@@ -318,7 +341,7 @@ class Matcher {
         cols_(xb_ - xa_ + 1),
         pixels_(region.x1 - region.x0),
         padded_((pixels_ + kChunk - 1) / kChunk * kChunk),
-        edge_(count_ + kChunk),
+        edge_(count_ + guardGroups_ * kLanes + kChunk),
         rowLen_(rowEntries(padded_ + 2 * edge_)),
         useTexture_(params.textureThreshold > 0),
         keyShift_(keyShift),
@@ -326,29 +349,38 @@ class Matcher {
             _mm256_set1_epi16(static_cast<std::int16_t>(kBias)),
             _mm256_and_si256(_mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7),
                              _mm256_set1_epi16(static_cast<std::int16_t>((1 << keyShift) - 1))))),
-        columnSum_(static_cast<std::size_t>(groups_) * cols_ * kLanes),
+        columnSum_(static_cast<std::size_t>(sweepGroups_) * cols_ * kLanes),
         columnTexture_(cols_),
-        leftIn_(static_cast<std::size_t>(cols_) * kLanes),
-        leftOut_(static_cast<std::size_t>(cols_) * kLanes),
-        reversedIn_(width_),
-        reversedOut_(width_),
-        costs_(static_cast<std::size_t>(count_ + 2) * rowLen_),
+        leftIn_(cols_),
+        leftOut_(cols_),
+        reversedIn_(width_ + guardGroups_ * kLanes),
+        reversedOut_(width_ + guardGroups_ * kLanes),
+        costs_(static_cast<std::size_t>(costRows()) * rowLen_),
         laneOf_(static_cast<std::size_t>(count_) * kLanes),
         disparityOf_(static_cast<std::size_t>(count_) * kLanes),
         pxTexture_(padded_),
         guardStep_(guard.step),
         guards_(guardCount(params, guard)),
         guardStride_((cols_ + 2 * kChunk) / kLanes * kLanes),
-        guardColumns_(static_cast<std::size_t>(guards_) * guardStride_),
+        guardColumns_(static_cast<std::size_t>(guardGroups_ > 0 ? 0 : guards_) * guardStride_),
         guardLeast_(guards_ > 0 ? padded_ + kLanes : 0),
         guardEdge_((minD_ + count_ - 1 - guard.lowest + 2 * kLanes) / kLanes * kLanes),
         guardRowLen_(guardEdge_ + padded_ + kChunk + 2 * kLanes),
-        guardCosts_(static_cast<std::size_t>(guards_) * guardRowLen_) {
-    std::fill_n(guardCosts_.get(), static_cast<std::size_t>(guards_) * guardRowLen_,
+        guardCosts_(static_cast<std::size_t>(guardGroups_ > 0 ? 0 : guards_) * guardRowLen_),
+        guardDisparityOf_(static_cast<std::size_t>(guardGroups_) * kLanes * kLanes),
+        laneZero_(costs_.get() + static_cast<std::size_t>(1 + guardGroups_ * kLanes) * rowLen_ +
+                  edge_) {
+    std::fill_n(guardCosts_.get(),
+                static_cast<std::size_t>(guardGroups_ > 0 ? 0 : guards_) * guardRowLen_,
                 std::uint16_t{0xFFFF});
+    for (int k = 0; k < guardGroups_ * kLanes; ++k)
+      std::fill_n(guardDisparityOf_.get() + k * kLanes, kLanes,
+                  static_cast<std::int16_t>(sweepMin_ + k));
+    for (int k = -guardGroups_ * kLanes; k < 0; ++k)
+      guardNoCostLeast_ = std::min(guardNoCostLeast_, guardNoCostFrom(k));
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
-    std::fill_n(costs_.get(), static_cast<std::size_t>(count_ + 2) * rowLen_, kNoCost);
+    std::fill_n(costs_.get(), static_cast<std::size_t>(costRows()) * rowLen_, kNoCost);
     for (int k = 0; k < count_; ++k) {
       std::fill_n(laneOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(k));
       std::fill_n(disparityOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(minD_ + k));
@@ -356,17 +388,18 @@ class Matcher {
   }
 
   HOROPTER_AVX2_TARGET void run(int y0, int y1) {
+    const bool separateGuard = guards_ > 0 && guardGroups_ == 0;
     for (int j = y0 - r_; j <= y0 + r_; ++j) {
       accumulateRow(j);
-      accumulateGuardRow(j);
+      if (separateGuard) accumulateGuardRow(j);
     }
-    if (guards_ > 0) guardRow();
+    if (separateGuard) guardRow();
     rowPass<false>(y0);
     for (int y = y0 + 1; y < y1; ++y) {
-      reverseRow(right_.row<std::uint8_t>(y + r_), width_, reversedIn_.get());
-      reverseRow(right_.row<std::uint8_t>(y - r_ - 1), width_, reversedOut_.get());
+      reverseRow(right_.row<std::uint8_t>(y + r_), width_, reversedIn());
+      reverseRow(right_.row<std::uint8_t>(y - r_ - 1), width_, reversedOut());
       if (useTexture_) slideTexture(y + r_, y - r_ - 1);
-      if (guards_ > 0) {
+      if (separateGuard) {
         slideGuard(y + r_, y - r_ - 1);
         guardRow();
       }
@@ -382,22 +415,35 @@ class Matcher {
   HOROPTER_AVX2_TARGET std::uint16_t* columnTexture(int x) const {
     return columnTexture_.get() + (x - xa_ + 1);
   }
-  // Offset in a reversed right row of disparity minD for left column x.
-  HOROPTER_AVX2_TARGET int reversedBase(int x) const { return width_ - 1 - x + minD_; }
-  // Window costs of lane k (-1 ..= count) for pixels i = x - x0 from 0, biased.
+  // Offset in a reversed right row of the sweep's first disparity (sweepMin)
+  // for left column x. A folded guard's lanes read up to 16 * guardGroups
+  // bytes before the row (x - d past the image's right edge: their costs
+  // there are replaced by "no cost", fixGuardTile), which the arrays hold.
+  HOROPTER_AVX2_TARGET int reversedBase(int x) const { return width_ - 1 - x + sweepMin_; }
+  HOROPTER_AVX2_TARGET std::uint8_t* reversedIn() const {
+    return reversedIn_.get() + guardGroups_ * kLanes;
+  }
+  HOROPTER_AVX2_TARGET std::uint8_t* reversedOut() const {
+    return reversedOut_.get() + guardGroups_ * kLanes;
+  }
+  // Rows of costs: lanes -16 * guardGroups .. count - 1 (a folded guard's
+  // below lane 0), with one row of "no cost" below and above.
+  HOROPTER_AVX2_TARGET int costRows() const { return count_ + guardGroups_ * kLanes + 2; }
+  // Window costs of lane k (-16 * guardGroups - 1 ..= count) for pixels
+  // i = x - x0 from 0, biased.
   HOROPTER_AVX2_TARGET std::int16_t* costs(int k) const {
-    return costs_.get() + static_cast<std::size_t>(k + 1) * rowLen_ + edge_;
+    return laneZero_ + static_cast<std::ptrdiff_t>(k) * rowLen_;
   }
 
   // Adds row j's |L - R| to every column sum (and T to the texture sums).
   HOROPTER_AVX2_TARGET void accumulateRow(int j) {
     const auto* l = left_.row<std::uint8_t>(j);
-    reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn_.get());
-    const int pairs = groups_ / 2;
+    reverseRow(right_.row<std::uint8_t>(j), width_, reversedIn());
+    const int pairs = sweepGroups_ / 2;
     const __m128i shift = _mm_cvtsi32_si128(keyShift_);
     for (int x = xa_; x < xb_; ++x) {
       const __m256i l8 = _mm256_set1_epi8(static_cast<char>(l[x]));
-      const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
+      const std::uint8_t* rv = reversedIn() + reversedBase(x);
       for (int p = 0; p < pairs; ++p) {
         const __m256i ad = absDiff8(l8, loadu(rv + p * 2 * kLanes));
         std::int16_t* colA = column(2 * p, x);
@@ -412,8 +458,8 @@ class Matcher {
     }
     for (int x = xa_; x < xb_; ++x) {
       const __m256i lv = _mm256_set1_epi16(l[x]);
-      const std::uint8_t* rv = reversedIn_.get() + reversedBase(x);
-      for (int g = 2 * pairs; g < groups_; ++g) {
+      const std::uint8_t* rv = reversedIn() + reversedBase(x);
+      for (int g = 2 * pairs; g < sweepGroups_; ++g) {
         std::int16_t* col = column(g, x);
         const __m256i ad = _mm256_abs_epi16(_mm256_sub_epi16(lv, widen(rv + g * kLanes)));
         store(col, _mm256_add_epi16(load(col), _mm256_sll_epi16(ad, shift)));
@@ -498,6 +544,48 @@ class Matcher {
     }
   }
 
+  // A folded guard's lanes (k < 0) after the sweep of pixels [i0, i1):
+  // "no cost" in the lanes it does not check (below `lowest`, in a partial
+  // group) and at the pixels where a checked one does not count (its window
+  // reaches past the right image: x >= W - r + d, read from the reversed
+  // rows' padding), so that decideRight's candidates are only those that
+  // count; then their least cost per pixel, for finishLeft (65535: none).
+  HOROPTER_AVX2_TARGET void fixGuardTile(int i0, int i1) {
+    // Whole passes of 4 blocks (past the last pixel the rows hold "no cost").
+    const int end = std::min((i1 + kChunk - 1) / kChunk * kChunk, padded_);
+    for (int k = -guardGroups_ * kLanes; k < 0 && end > guardNoCostLeast_; ++k) {
+      const int from = std::clamp(guardNoCostFrom(k), i0, end);
+      if (from < end) std::fill(costs(k) + from, costs(k) + end, kNoCost);
+    }
+    const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+    const __m256i ones = _mm256_set1_epi16(-1);
+    const __m128i shift = _mm_cvtsi32_si128(keyShift_);
+    const std::ptrdiff_t rowLen = rowLen_;
+    for (int b = i0; b < end; b += kChunk) {
+      static_assert(kChunk == 4 * kLanes);
+      __m256i l0 = _mm256_set1_epi16(kNoCost), l1 = l0, l2 = l0, l3 = l0;
+      const std::int16_t* c = costs(-guards_) + b;
+      for (int k = 0; k < guards_; ++k, c += rowLen) {
+        l0 = _mm256_min_epi16(l0, load(c));
+        l1 = _mm256_min_epi16(l1, load(c + kLanes));
+        l2 = _mm256_min_epi16(l2, load(c + 2 * kLanes));
+        l3 = _mm256_min_epi16(l3, load(c + 3 * kLanes));
+      }
+      const __m256i least[4] = {l0, l1, l2, l3};
+      for (int n = 0; n < 4; ++n) {
+        const __m256i key = _mm256_xor_si256(least[n], bias16);
+        _mm256_storeu_si256(
+            reinterpret_cast<__m256i*>(guardLeast_.get() + b + kLanes * n),
+            _mm256_or_si256(_mm256_srl_epi16(key, shift), _mm256_cmpeq_epi16(key, ones)));
+      }
+    }
+  }
+  // The first pixel from which a folded guard's lane k (< 0) holds "no
+  // cost": 0 where it is not checked, else where it stops counting.
+  HOROPTER_AVX2_TARGET int guardNoCostFrom(int k) const {
+    return k < -guards_ ? 0 : std::max(0, guardPixelEnd(-k - 1));
+  }
+
   // The current row's window costs of every checked disparity, and their
   // least per pixel i (65535 where none counts): pixel i's window is columns
   // x0 + i - r .. x0 + i + r, entries i .. i + 2r of a guard column.
@@ -540,7 +628,7 @@ class Matcher {
     const std::int16_t* dropB;
     const std::uint8_t* ri;
     const std::uint8_t* ro;
-    const std::uint8_t* li;  // left bytes (pairs) or broadcast lanes (last group)
+    const std::uint8_t* li;  // left bytes (pairs) or 16-bit left pixels (last group)
     const std::uint8_t* lo;
     __m256i costA, costB;
   };
@@ -552,15 +640,23 @@ class Matcher {
   HOROPTER_AVX2_TARGET void rowPass(int y) {
     const auto* lIn = left_.row<std::uint8_t>(kSlide ? y + r_ : y);
     const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
-    const int pairs = groups_ / 2;
-    const bool odd = groups_ % 2 != 0;
+    const int pairs = sweepGroups_ / 2;
+    const bool odd = sweepGroups_ % 2 != 0;
     if constexpr (kSlide) {
-      // Left pixels broadcast once, for the last (unpaired) group.
-      std::int16_t* in = leftIn_.get();
-      std::int16_t* out = leftOut_.get();
-      for (int x = xa_; x < xb_ && odd; ++x, in += kLanes, out += kLanes) {
-        store(in, _mm256_set1_epi16(lIn[x]));
-        store(out, _mm256_set1_epi16(lOut[x]));
+      // Left pixels widened to 16 bits once, for the last (unpaired)
+      // group, which broadcasts each from memory (one instruction; the
+      // broadcasts stored here for every column took 3.3 M instructions of
+      // a 640x480 frame).
+      std::int16_t* in = leftIn_.get() - xa_;
+      std::int16_t* out = leftOut_.get() - xa_;
+      int x = xa_;
+      for (; x + kLanes <= xb_ && odd; x += kLanes) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(in + x), widen(lIn + x));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x), widen(lOut + x));
+      }
+      for (; x < xb_ && odd; ++x) {
+        in[x] = lIn[x];
+        out[x] = lOut[x];
       }
     }
     if (useTexture_) {
@@ -583,19 +679,19 @@ class Matcher {
       s.colB = column(2 * p + 1, xa_);
       s.dropA = column(2 * p, xa_ - 1);  // all zeros while warming up
       s.dropB = column(2 * p + 1, xa_ - 1);
-      s.ri = reversedIn_.get() + reversedBase(xa_) + p * 2 * kLanes;
-      s.ro = reversedOut_.get() + reversedBase(xa_) + p * 2 * kLanes;
+      s.ri = reversedIn() + reversedBase(xa_) + p * 2 * kLanes;
+      s.ro = reversedOut() + reversedBase(xa_) + p * 2 * kLanes;
       s.li = lIn + xa_;
       s.lo = lOut + xa_;
       s.costA = s.costB = keyInit_;
     }
     if (odd) {
-      const int g = groups_ - 1;
+      const int g = sweepGroups_ - 1;
       SweepState& s = state[pairs];
       s.colA = column(g, xa_);
       s.dropA = column(g, xa_ - 1);
-      s.ri = reversedIn_.get() + reversedBase(xa_) + g * kLanes;
-      s.ro = reversedOut_.get() + reversedBase(xa_) + g * kLanes;
+      s.ri = reversedIn() + reversedBase(xa_) + g * kLanes;
+      s.ro = reversedOut() + reversedBase(xa_) + g * kLanes;
       s.li = reinterpret_cast<const std::uint8_t*>(leftIn_.get());
       s.lo = reinterpret_cast<const std::uint8_t*>(leftOut_.get());
       s.costA = keyInit_;
@@ -611,6 +707,7 @@ class Matcher {
       for (int p = 0; p < pairs; ++p)
         sweepPair<kSlide>(p, state[p], i0, i1);
       if (odd) sweepLast<kSlide>(state[pairs], i0, i1);
+      if (guardGroups_ > 0) fixGuardTile(i0, i1);
       const auto decide = [&](auto shift) HOROPTER_AVX2_TARGET {
         constexpr int kShift = decltype(shift)::value;
         decideLeft<kShift>(outDisparity, i0, i1);
@@ -645,7 +742,7 @@ class Matcher {
   // stored by lane.
   template <bool kSlide>
   HOROPTER_AVX2_TARGET void sweepLast(SweepState& s, int i0, int i1) {
-    const int g = groups_ - 1, pixels = pixels_, window = 2 * r_ + 1;
+    const int g = sweepGroups_ - 1, pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
     std::int16_t* col = s.colA;
     const std::int16_t* drop = s.dropA;
@@ -659,15 +756,15 @@ class Matcher {
     const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i c = load(col);
       if constexpr (kSlide) {
-        const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(load(li), widen(ri)));
-        const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(load(lo), widen(ro)));
+        const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(_mm256_set1_epi16(*li), widen(ri)));
+        const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(_mm256_set1_epi16(*lo), widen(ro)));
         c = _mm256_add_epi16(c, _mm256_sll_epi16(_mm256_sub_epi16(in, out), shift));
         store(col, c);
       }
       cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop)));
       col += kLanes;
-      li += kLanes;
-      lo += kLanes;
+      ++li;
+      ++lo;
       --ri;
       --ro;
       if (moveDrop) drop += kLanes;
@@ -688,7 +785,7 @@ class Matcher {
           v[j] = b + j < pixels ? step(true) : _mm256_set1_epi16(kNoCost);
       }
       transpose16(v, t);
-      std::int16_t* row = costs(g * kLanes) + b;
+      std::int16_t* row = costs(g * kLanes + sweepMin_ - minD_) + b;
       for (int k = 0; k < kLanes; ++k, row += rowLen)
         store(row, t[k]);
     }
@@ -751,7 +848,7 @@ class Matcher {
       for (int n = 0; n < window - 1; ++n)
         step(false);
     }
-    std::int16_t* const base = costs(p * 2 * kLanes);
+    std::int16_t* const base = costs(p * 2 * kLanes + sweepMin_ - minD_);
     for (int b = i0; b < i1; b += kLanes) {
       __m256i v[kLanes], w[kLanes], t[kLanes];
       if (b + kLanes <= pixels) {
@@ -902,6 +999,9 @@ class Matcher {
           _mm256_xor_si256(_mm256_permute4x64_epi64(_mm256_packus_epi32(lo, hi), 0xD8), bias16);
       return _mm256_or_si256(_mm256_srli_epi16(keys, kShift), _mm256_cmpeq_epi16(keys, ones));
     };
+    // With a folded guard, row -1 is lane minD - 1, not "no cost". At b = 0
+    // that changes nothing: where it is <= the limit, so is the guard's
+    // least, and the pixel is invalid; cm takes `above` there.
     const __m256i below = neighbourCosts(costs(-1));
     const __m256i above = neighbourCosts(costs(1));
 
@@ -988,7 +1088,25 @@ class Matcher {
     const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
     for (int n = 0; n < kBlocks; ++n)
       d[n] = _mm256_add_epi16(d[n], _mm256_and_si256(best[n], lowBits));
-    if (guards_ > 0) {
+    if (guardGroups_ > 0) {
+      // A folded guard's candidates: its lanes' least key (the smallest g on
+      // ties), written as min(g, minD - 2); it wins where its cost is <= the
+      // range's least (keys with their low bits cleared; "no cost", above
+      // every real key so cleared, never wins).
+      const int lanes = guardGroups_ * kLanes;
+      __m256i guardBest[kBlocks], guardD[kBlocks];
+      leastKeys<kShift, kBlocks>(costs(-lanes) + (xr0 + sweepMin_ - x0_), rowLen_ + 1, lanes,
+                                 guardDisparityOf_.get(), guardBest, guardD);
+      const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~((1 << kShift) - 1)));
+      const __m256i top = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 2));
+      for (int n = 0; n < kBlocks; ++n) {
+        const __m256i g = _mm256_min_epi16(
+            _mm256_add_epi16(guardD[n], _mm256_and_si256(guardBest[n], lowBits)), top);
+        const __m256i loses = _mm256_cmpgt_epi16(_mm256_and_si256(guardBest[n], high),
+                                                 _mm256_and_si256(best[n], high));
+        d[n] = _mm256_blendv_epi8(g, d[n], loses);
+      }
+    } else if (guards_ > 0) {
       // The guard's candidates, in increasing g: a strict < (unsigned, by
       // the bias) keeps the smallest g; it wins where <= the range's least.
       const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
@@ -1029,6 +1147,10 @@ class Matcher {
   const ImageView& disparity_;
   const ImageView& winnerRight_;
   const int width_, r_, count_, groups_, minD_;
+  // A folded guard (step 1): its checked disparities are swept as
+  // guardGroups_ more 16-lane groups below the range's, lanes from
+  // sweepMin_ (see Strategy, 4).
+  const int guardGroups_, sweepGroups_, sweepMin_;
   const int x0_, x1_, xa_, xb_, cols_;
   const int pixels_, padded_, edge_, rowLen_;
   const bool useTexture_;
@@ -1038,7 +1160,7 @@ class Matcher {
   const __m256i keyInit_;
   AlignedArray<std::int16_t> columnSum_;         // [g][x - xa + 1][16]; column xa - 1 stays zero
   AlignedArray<std::uint16_t> columnTexture_;    // [x - xa + 1]; index 0 stays zero
-  AlignedArray<std::int16_t> leftIn_, leftOut_;  // [x - xa][16]: left pixels, broadcast
+  AlignedArray<std::int16_t> leftIn_, leftOut_;  // [x - xa]: left pixels in 16 bits
   AlignedArray<std::uint8_t> reversedIn_, reversedOut_;  // right rows, reversed
   AlignedArray<std::int16_t> costs_;                     // [k + 1][edge + i + edge], biased
   AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
@@ -1048,7 +1170,10 @@ class Matcher {
   AlignedArray<std::uint16_t> guardColumns_;             // [n][x - xa]: column sums
   AlignedArray<std::uint16_t> guardLeast_;               // [i]: least window cost (65535: none)
   const int guardEdge_, guardRowLen_;
-  AlignedArray<std::uint16_t> guardCosts_;  // [n][guardEdge + i]: window costs (65535: none)
+  AlignedArray<std::uint16_t> guardCosts_;       // [n][guardEdge + i]: window costs (65535: none)
+  AlignedArray<std::int16_t> guardDisparityOf_;  // folded: [k][16] = sweepMin + k
+  std::int16_t* const laneZero_;                 // costs(0)
+  int guardNoCostLeast_ = 1 << 30;               // least guardNoCostFrom over the folded lanes
 };
 
 }  // namespace
