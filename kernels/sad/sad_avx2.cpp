@@ -31,20 +31,18 @@
 //      disparities at a time (lanes d = minD + 16g + k): columnSum[g][x]
 //      holds a column's costs over the window's height and slides down a row
 //      by adding |L - R| of the entering row and subtracting that of the
-//      leaving one; the right rows are copied reversed, so the pixels x - d
-//      of 16 consecutive d are 16 consecutive bytes, widened to 16 bits
-//      against the broadcast left pixel. Along x, the window cost takes in
-//      column x + r and drops column x - r - 1 (a zero column left of the
-//      first makes warming up the same step). Groups go two at a time (32
-//      disparities): |L - R| in bytes (saturating subtractions both ways,
-//      or), entering and leaving rows interleaved by unpacking within 128-bit
-//      lanes and turned into G * (in - out) by maddubs with (G, -G), so group 2p
-//      holds d = 32p + (0..7, 16..23) and group 2p + 1 d = 32p + (8..15,
-//      24..31); an odd last group takes 16-bit lanes in natural order,
-//      against left pixels widened once per row and broadcast from memory
-//      (about 1.2x a paired group's instructions per disparity). Every
-//      16 pixels, their 16 cost vectors are transposed in registers and
-//      stored by lane (undoing the pair order): costs[k][i].
+//      leaving one. The right rows are copied reversed, so the pixels x - d
+//      of 16 consecutive d are 16 consecutive bytes, and then the entering
+//      and leaving rows' bytes are interleaved (as are the left pixels, one
+//      16-bit word per column): per pixel and group, one broadcast of the
+//      left word, |L - R| of both rows in one byte vector (saturating
+//      subtractions both ways, or) and maddubs with (G, -G) give
+//      G * (in - out) in 16-bit lanes in natural order. Along x, the window
+//      cost takes in column x + r and drops column x - r - 1 (a zero column
+//      left of the first makes warming up the same step). Groups go two at a
+//      time (32 disparities, sharing the broadcast); an odd last group alone.
+//      Every 16 pixels, their 16 cost vectors are transposed in registers
+//      and stored by lane: costs[k][i].
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
 //      key over the lanes as above, so the smallest d wins ties; the
 //      uniqueness limit (32-bit, the /100 as a multiplication in double,
@@ -186,6 +184,24 @@ HOROPTER_AVX2_TARGET void reverseRow(const std::uint8_t* src, int width, std::ui
   }
   for (; i < width; ++i)
     dst[i] = src[width - 1 - i];
+}
+
+// dst[2i] = a[i], dst[2i + 1] = b[i] for i in [0, n).
+HOROPTER_AVX2_TARGET void interleaveBytes(const std::uint8_t* a, const std::uint8_t* b, int n,
+                                          std::uint8_t* dst) {
+  int i = 0;
+  for (; i + 32 <= n; i += 32) {
+    const __m256i va = loadu(a + i), vb = loadu(b + i);
+    const __m256i lo = _mm256_unpacklo_epi8(va, vb), hi = _mm256_unpackhi_epi8(va, vb);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + 2 * i),
+                        _mm256_permute2x128_si256(lo, hi, 0x20));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + 2 * i + 32),
+                        _mm256_permute2x128_si256(lo, hi, 0x31));
+  }
+  for (; i < n; ++i) {
+    dst[2 * i] = a[i];
+    dst[2 * i + 1] = b[i];
+  }
 }
 
 // Transposes 16 vectors of 16 lanes: t[k] lane j = v[j] lane k. Each half of
@@ -351,8 +367,8 @@ class Matcher {
                              _mm256_set1_epi16(static_cast<std::int16_t>((1 << keyShift) - 1))))),
         columnSum_(static_cast<std::size_t>(sweepGroups_) * cols_ * kLanes),
         columnTexture_(cols_),
-        leftIn_(cols_),
-        leftOut_(cols_),
+        leftPairs_(cols_),
+        rightPairs_(2 * static_cast<std::size_t>(width_ + guardGroups_ * kLanes)),
         reversedIn_(width_ + guardGroups_ * kLanes),
         reversedOut_(width_ + guardGroups_ * kLanes),
         costs_(static_cast<std::size_t>(costRows()) * rowLen_),
@@ -449,9 +465,9 @@ class Matcher {
         std::int16_t* colA = column(2 * p, x);
         std::int16_t* colB = column(2 * p + 1, x);
         const __m256i adA =
-            _mm256_sll_epi16(_mm256_unpacklo_epi8(ad, _mm256_setzero_si256()), shift);
+            _mm256_sll_epi16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(ad)), shift);
         const __m256i adB =
-            _mm256_sll_epi16(_mm256_unpackhi_epi8(ad, _mm256_setzero_si256()), shift);
+            _mm256_sll_epi16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(ad, 1)), shift);
         store(colA, _mm256_add_epi16(load(colA), adA));
         store(colB, _mm256_add_epi16(load(colB), adB));
       }
@@ -626,10 +642,8 @@ class Matcher {
     std::int16_t* colB;
     const std::int16_t* dropA;
     const std::int16_t* dropB;
-    const std::uint8_t* ri;
-    const std::uint8_t* ro;
-    const std::uint8_t* li;  // left bytes (pairs) or 16-bit left pixels (last group)
-    const std::uint8_t* lo;
+    const std::uint8_t* ri;  // rightPairs_: (in, out) bytes of lane 0's right pixel
+    const std::uint8_t* li;  // leftPairs_: (in, out) bytes of the left pixel
     __m256i costA, costB;
   };
 
@@ -643,21 +657,15 @@ class Matcher {
     const int pairs = sweepGroups_ / 2;
     const bool odd = sweepGroups_ % 2 != 0;
     if constexpr (kSlide) {
-      // Left pixels widened to 16 bits once, for the last (unpaired)
-      // group, which broadcasts each from memory (one instruction; the
-      // broadcasts stored here for every column took 3.3 M instructions of
-      // a 640x480 frame).
-      std::int16_t* in = leftIn_.get() - xa_;
-      std::int16_t* out = leftOut_.get() - xa_;
-      int x = xa_;
-      for (; x + kLanes <= xb_ && odd; x += kLanes) {
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(in + x), widen(lIn + x));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x), widen(lOut + x));
-      }
-      for (; x < xb_ && odd; ++x) {
-        in[x] = lIn[x];
-        out[x] = lOut[x];
-      }
+      // The entering and leaving rows' bytes interleaved, left pixels (one
+      // 16-bit word per column, which the sweep broadcasts from memory) and
+      // reversed right rows: |L - R| of both rows is then one byte vector
+      // per 16 lanes, (in, out) per lane, and maddubs with (G, -G) makes
+      // G * (in - out) in natural lane order.
+      interleaveBytes(lIn + xa_, lOut + xa_, xb_ - xa_,
+                      reinterpret_cast<std::uint8_t*>(leftPairs_.get()));
+      interleaveBytes(reversedIn_.get(), reversedOut_.get(), width_ + guardGroups_ * kLanes,
+                      rightPairs_.get());
     }
     if (useTexture_) {
       const std::uint16_t* t = columnTexture(xa_);  // column xa - 1 (t[-1]) is zero
@@ -679,10 +687,8 @@ class Matcher {
       s.colB = column(2 * p + 1, xa_);
       s.dropA = column(2 * p, xa_ - 1);  // all zeros while warming up
       s.dropB = column(2 * p + 1, xa_ - 1);
-      s.ri = reversedIn() + reversedBase(xa_) + p * 2 * kLanes;
-      s.ro = reversedOut() + reversedBase(xa_) + p * 2 * kLanes;
-      s.li = lIn + xa_;
-      s.lo = lOut + xa_;
+      s.ri = rightPairs_.get() + 2 * (guardGroups_ * kLanes + reversedBase(xa_) + p * 2 * kLanes);
+      s.li = reinterpret_cast<const std::uint8_t*>(leftPairs_.get());
       s.costA = s.costB = keyInit_;
     }
     if (odd) {
@@ -690,10 +696,8 @@ class Matcher {
       SweepState& s = state[pairs];
       s.colA = column(g, xa_);
       s.dropA = column(g, xa_ - 1);
-      s.ri = reversedIn() + reversedBase(xa_) + g * kLanes;
-      s.ro = reversedOut() + reversedBase(xa_) + g * kLanes;
-      s.li = reinterpret_cast<const std::uint8_t*>(leftIn_.get());
-      s.lo = reinterpret_cast<const std::uint8_t*>(leftOut_.get());
+      s.ri = rightPairs_.get() + 2 * (guardGroups_ * kLanes + reversedBase(xa_) + g * kLanes);
+      s.li = reinterpret_cast<const std::uint8_t*>(leftPairs_.get());
       s.costA = keyInit_;
     }
 
@@ -746,27 +750,26 @@ class Matcher {
     const std::ptrdiff_t rowLen = rowLen_;
     std::int16_t* col = s.colA;
     const std::int16_t* drop = s.dropA;
-    const std::uint8_t* ri = s.ri;
-    const std::uint8_t* ro = s.ro;
-    const auto* li = reinterpret_cast<const std::int16_t*>(s.li);
-    const auto* lo = reinterpret_cast<const std::int16_t*>(s.lo);
+    const std::uint8_t* ri = s.ri;  // (in, out) byte pairs of the right pixels
+    const auto* li = reinterpret_cast<const std::int16_t*>(s.li);  // (in, out) left bytes
     __m256i cost = s.costA;
-    const __m128i shift = _mm_cvtsi32_si128(keyShift_);
+    const int unit = 1 << keyShift_;
+    const __m256i plusMinus =
+        _mm256_set1_epi16(static_cast<std::int16_t>((256 - unit) << 8 | unit));
     // One column: slide it, add it, drop `drop`; on to the next column.
+    // |L - R| of both rows in one byte vector, (in, out) per lane, so that
+    // maddubs with (G, -G) gives G * (in - out) in natural lane order.
     const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i c = load(col);
       if constexpr (kSlide) {
-        const __m256i in = _mm256_abs_epi16(_mm256_sub_epi16(_mm256_set1_epi16(*li), widen(ri)));
-        const __m256i out = _mm256_abs_epi16(_mm256_sub_epi16(_mm256_set1_epi16(*lo), widen(ro)));
-        c = _mm256_add_epi16(c, _mm256_sll_epi16(_mm256_sub_epi16(in, out), shift));
+        const __m256i ad = absDiff8(_mm256_set1_epi16(*li), loadu(ri));
+        c = _mm256_add_epi16(c, _mm256_maddubs_epi16(ad, plusMinus));
         store(col, c);
       }
       cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop)));
       col += kLanes;
       ++li;
-      ++lo;
-      --ri;
-      --ro;
+      ri -= 2;
       if (moveDrop) drop += kLanes;
       return cost;
     };
@@ -792,17 +795,12 @@ class Matcher {
     s.colA = col;
     s.dropA = drop;
     s.ri = ri;
-    s.ro = ro;
     s.li = reinterpret_cast<const std::uint8_t*>(li);
-    s.lo = reinterpret_cast<const std::uint8_t*>(lo);
     s.costA = cost;
   }
 
-  // The sweep of groups 2p and 2p + 1 together over pixels [i0, i1): |L - R|
-  // of 32 disparities in bytes, then widened by unpacking within 128-bit
-  // lanes, so that group 2p's vectors hold d = 32p + (0..7, 16..23) and
-  // group 2p + 1's d = 32p + (8..15, 24..31); the stores after the
-  // transposes undo that.
+  // The sweep of groups 2p and 2p + 1 together over pixels [i0, i1): as
+  // sweepLast's, sharing the broadcast left pixels.
   template <bool kSlide>
   HOROPTER_AVX2_TARGET void sweepPair(int p, SweepState& s, int i0, int i1) {
     const int pixels = pixels_, window = 2 * r_ + 1;
@@ -811,10 +809,8 @@ class Matcher {
     std::int16_t* colB = s.colB;
     const std::int16_t* dropA = s.dropA;
     const std::int16_t* dropB = s.dropB;
-    const std::uint8_t* ri = s.ri;
-    const std::uint8_t* ro = s.ro;
-    const std::uint8_t* li = s.li;
-    const std::uint8_t* lo = s.lo;
+    const std::uint8_t* ri = s.ri;  // (in, out) byte pairs of the right pixels
+    const auto* li = reinterpret_cast<const std::int16_t*>(s.li);  // (in, out) left bytes
     // (in, out) byte pairs times (G, -G): G * (in - out) in 16 bits.
     const int unit = 1 << keyShift_;
     const __m256i plusMinus =
@@ -824,10 +820,10 @@ class Matcher {
     const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i cA = load(colA), cB = load(colB);
       if constexpr (kSlide) {
-        const __m256i in = absDiff8(_mm256_set1_epi8(static_cast<char>(*li)), loadu(ri));
-        const __m256i out = absDiff8(_mm256_set1_epi8(static_cast<char>(*lo)), loadu(ro));
-        cA = _mm256_add_epi16(cA, _mm256_maddubs_epi16(_mm256_unpacklo_epi8(in, out), plusMinus));
-        cB = _mm256_add_epi16(cB, _mm256_maddubs_epi16(_mm256_unpackhi_epi8(in, out), plusMinus));
+        const __m256i l = _mm256_set1_epi16(*li);
+        cA = _mm256_add_epi16(cA, _mm256_maddubs_epi16(absDiff8(l, loadu(ri)), plusMinus));
+        cB = _mm256_add_epi16(cB,
+                              _mm256_maddubs_epi16(absDiff8(l, loadu(ri + 2 * kLanes)), plusMinus));
         store(colA, cA);
         store(colB, cB);
       }
@@ -836,9 +832,7 @@ class Matcher {
       colA += kLanes;
       colB += kLanes;
       ++li;
-      ++lo;
-      --ri;
-      --ro;
+      ri -= 2;
       if (moveDrop) {
         dropA += kLanes;
         dropB += kLanes;
@@ -871,19 +865,17 @@ class Matcher {
       }
       transpose16(v, t);
       for (int k = 0; k < kLanes; ++k)
-        store(base + (k < 8 ? k : k + 8) * rowLen + b, t[k]);
+        store(base + k * rowLen + b, t[k]);
       transpose16(w, t);
       for (int k = 0; k < kLanes; ++k)
-        store(base + (k < 8 ? k + 8 : k + 16) * rowLen + b, t[k]);
+        store(base + (kLanes + k) * rowLen + b, t[k]);
     }
     s.colA = colA;
     s.colB = colB;
     s.dropA = dropA;
     s.dropB = dropB;
     s.ri = ri;
-    s.ro = ro;
-    s.li = li;
-    s.lo = lo;
+    s.li = reinterpret_cast<const std::uint8_t*>(li);
     s.costA = costA;
     s.costB = costB;
   }
@@ -1158,9 +1150,13 @@ class Matcher {
   // keyInit_ is the running sums' start: the bias and each lane's k mod G.
   const int keyShift_;
   const __m256i keyInit_;
-  AlignedArray<std::int16_t> columnSum_;         // [g][x - xa + 1][16]; column xa - 1 stays zero
-  AlignedArray<std::uint16_t> columnTexture_;    // [x - xa + 1]; index 0 stays zero
-  AlignedArray<std::int16_t> leftIn_, leftOut_;  // [x - xa]: left pixels in 16 bits
+  AlignedArray<std::int16_t> columnSum_;       // [g][x - xa + 1][16]; column xa - 1 stays zero
+  AlignedArray<std::uint16_t> columnTexture_;  // [x - xa + 1]; index 0 stays zero
+  // Unpaired group: [x - xa] = the entering row's left pixel | the leaving
+  // row's << 8; reversed right rows' bytes interleaved the same way (from
+  // the front padding on).
+  AlignedArray<std::int16_t> leftPairs_;
+  AlignedArray<std::uint8_t> rightPairs_;
   AlignedArray<std::uint8_t> reversedIn_, reversedOut_;  // right rows, reversed
   AlignedArray<std::int16_t> costs_;                     // [k + 1][edge + i + edge], biased
   AlignedArray<std::int16_t> laneOf_;                    // [k][16] = k
