@@ -534,21 +534,23 @@ void conformMatchBlocksGuarded(const Backend& backend) {
     p.blockSize = 7;
     cases.push_back({83, 19, p, {step, -20}, Pattern::Textured, -6, true});
   }
-  // Step 1 (the AVX2 matcher sweeps the checked disparities as 16-lane
-  // groups below the range's): every checked disparity below zero and below
-  // a negative range, whose windows reach past the right image at the
-  // region's right end; and many groups (8, the last partial) with the true
-  // disparity among them.
-  for (int ratio : {0, 15}) {
-    StereoParams p;
-    p.minDisparity = -5;
-    p.numDisparities = 32;
-    p.blockSize = 5;
-    p.uniquenessRatio = ratio;
-    cases.push_back({90, 17, p, {1, -30}, Pattern::Textured, -12, ratio == 0});
-    p.minDisparity = 120;
-    p.blockSize = 7;
-    cases.push_back({200, 15, p, {1, 3}, Pattern::Textured, 60, ratio != 0});
+  // Steps 1 and 2 (the AVX2 matcher sweeps the checked disparities' span
+  // as 16-lane groups below the range's): every checked disparity below
+  // zero and below a negative range, whose windows reach past the right
+  // image at the region's right end; and many groups (8 or 15, the last
+  // partial) with the true disparity among them.
+  for (int step : {1, 2}) {
+    for (int ratio : {0, 15}) {
+      StereoParams p;
+      p.minDisparity = -5;
+      p.numDisparities = 32;
+      p.blockSize = 5;
+      p.uniquenessRatio = ratio;
+      cases.push_back({90, 17, p, {step, -30}, Pattern::Textured, -12 - step, ratio == 0});
+      p.minDisparity = 120;
+      p.blockSize = 7;
+      cases.push_back({200, 15, p, {step, 3}, Pattern::Textured, 60, ratio != 0});
+    }
   }
   for (int blockSize : {17, 33}) {  // past the AVX2 bound: its scalar fallback
     StereoParams p;
