@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libopencv-dev opencv-data opencv-doc    # OpenCV, its Haar cascades, its sample data
+  libavformat-dev                         # run.avi's muxer (engine/cli/mjpeg_avi.hpp)
   python3-skimage                         # scikit-image's data: textures of the synthetic scene
   libeigen3-dev nlohmann-json3-dev        # Eigen; JSON of the evaluation reports
   ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo   # OpenCL, and PoCL on the CPU

@@ -1,10 +1,7 @@
 #include "video_recorder.hpp"
 
-#include <filesystem>
 #include <opencv2/imgproc.hpp>
-#include <system_error>
 
-#include "file_output.hpp"
 #include "horopter/core/error.hpp"
 
 namespace horopter::cli {
@@ -53,14 +50,13 @@ void VideoRecorder::encodeLoop() {
       changed_.notify_all();
     }
     try {
-      if (!writer_.isOpened()) {
+      if (!file_) {
         size_ = cv::Size(view.cols / scale_, view.rows / scale_);
-        if (!writer_.open(path_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps_, size_))
-          throw Error("cannot write the video '" + path_ + "' (no MJPG encoder in this OpenCV?)");
+        file_ = std::make_unique<MjpegAviFile>(path_, size_, fps_);
       }
       cv::Mat frame = view;
       if (view.size() != size_) cv::resize(view, frame, size_, 0, 0, cv::INTER_AREA);
-      writer_.write(frame);
+      file_->write(frame);
       const std::lock_guard lock(mutex_);
       ++written_;
     } catch (...) {
@@ -85,14 +81,7 @@ void VideoRecorder::close() {
   }
   if (thread_.joinable()) thread_.join();
   rethrowFailure();
-  if (!writer_.isOpened()) return;
-  writer_.release();
-  // cv::VideoWriter reports no write error: a missing or empty file at least
-  // is caught (a disk that filled up mid-video is not).
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path_, ec);
-  if (ec) detail::throwWriteError("video", path_, ec.value());
-  if (size == 0) detail::throwWriteError("video", path_, 0);
+  if (file_) file_->close();  // every write of the file is checked there
 }
 
 std::int64_t VideoRecorder::framesWritten() const {

@@ -1,6 +1,6 @@
 // run.avi, encoded on its own thread: `horopter run` hands each annotated
-// view over and goes on, so the encoder (about four fifths of the video's
-// CPU, the colour conversion included) is off the pipeline's last lane and
+// view over and goes on, so the encoder (about half of the video's CPU,
+// drawing the view the other half) is off the pipeline's last lane and
 // uses the CPU the lanes leave idle. The queue is bounded: when the encoder
 // falls behind, the pipeline waits rather than lose a frame.
 #pragma once
@@ -9,12 +9,14 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 
 #include <opencv2/core.hpp>
-#include <opencv2/videoio.hpp>
+
+#include "mjpeg_avi.hpp"
 
 namespace horopter::cli {
 
@@ -30,8 +32,8 @@ class VideoRecorder {
   // the scale); a later view of another size is resized to it, so that no
   // frame is dropped. Throws horopter::Error for the encoder's failure.
   void write(const cv::Mat& view);
-  // Encodes what is queued, closes the file and checks it (a missing or
-  // empty file is an error naming it). Idempotent.
+  // Encodes what is queued and closes the file, every write checked (a
+  // failed one is an error naming the file). Idempotent.
   void close();
   std::int64_t framesWritten() const;
 
@@ -42,7 +44,7 @@ class VideoRecorder {
   const std::string path_;
   const double fps_;
   const int scale_;
-  cv::VideoWriter writer_;
+  std::unique_ptr<MjpegAviFile> file_;  // opened at the first view
   cv::Size size_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
