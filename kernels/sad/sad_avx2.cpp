@@ -36,13 +36,17 @@
 //      and leaving rows' bytes are interleaved (as are the left pixels, one
 //      16-bit word per column): per pixel and group, one broadcast of the
 //      left word, |L - R| of both rows in one byte vector (saturating
-//      subtractions both ways, or) and maddubs with (G, -G) give
+//      subtractions both ways, or; where every |L - R| <= 127, as with
+//      x-Sobel inputs, the absolute value of the wrapped byte difference)
+//      and maddubs with (G, -G) give
 //      G * (in - out) in 16-bit lanes in natural order. Along x, the window
 //      cost takes in column x + r and drops column x - r - 1 (a zero column
 //      left of the first makes warming up the same step). Groups go two at a
 //      time (32 disparities, sharing the broadcast); an odd last group alone.
 //      Every 16 pixels, their 16 cost vectors are transposed in registers
-//      and stored by lane: costs[k][i].
+//      and stored by lane: costs[k][i]. A pair does it every 8 pixels, per
+//      group 8 vectors transposed within 128-bit lanes and stored as
+//      halves (rows k and k + 8), so that 16 vectors are live, not 32.
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
 //      key over the lanes as above, so the smallest d wins ties; the
 //      uniqueness limit (32-bit, the /100 as a multiplication in double,
@@ -144,6 +148,17 @@ HOROPTER_AVX2_TARGET inline __m256i widen(const std::uint8_t* p) {
 HOROPTER_AVX2_TARGET inline __m256i absDiff8(__m256i a, __m256i b) {
   return _mm256_or_si256(_mm256_subs_epu8(a, b), _mm256_subs_epu8(b, a));
 }
+// |a - b| per byte where every true difference a - b lies in [-127, 127]
+// (kNarrow: x-Sobel inputs, 0 .. 2 * preFilterCap <= 126): the wrapped
+// signed difference is exact, so its absolute value takes 2 instructions
+// instead of absDiff8's 3.
+template <bool kNarrow>
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline __m256i absDiffRows(__m256i a, __m256i b) {
+  if constexpr (kNarrow)
+    return _mm256_abs_epi8(_mm256_sub_epi8(a, b));
+  else
+    return absDiff8(a, b);
+}
 HOROPTER_AVX2_TARGET inline __m256i load8x32(const int* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
 }
@@ -233,6 +248,47 @@ HOROPTER_AVX2_TARGET void interleaveBytes(const std::uint8_t* a, const std::uint
   }
 }
 
+// Half of transpose16: 8 vectors r[0..7] (pixels j, 16 lanes each) become
+// w[c], c = 0..7, whose low 128 bits hold lane c of the 8 pixels and whose
+// high 128 bits lane c + 8. Stored as 128-bit halves, they need no lane
+// exchange, and a block of 16 pixels needs only 8 of its cost vectors live.
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void transpose8x16(const __m256i* r,
+                                                                      __m256i* w) {
+  __m256i s[8], u[8];
+  for (int m = 0; m < 4; ++m) {
+    s[2 * m] = _mm256_unpacklo_epi16(r[2 * m], r[2 * m + 1]);
+    s[2 * m + 1] = _mm256_unpackhi_epi16(r[2 * m], r[2 * m + 1]);
+  }
+  for (int m = 0; m < 2; ++m) {
+    u[4 * m] = _mm256_unpacklo_epi32(s[4 * m], s[4 * m + 2]);
+    u[4 * m + 1] = _mm256_unpackhi_epi32(s[4 * m], s[4 * m + 2]);
+    u[4 * m + 2] = _mm256_unpacklo_epi32(s[4 * m + 1], s[4 * m + 3]);
+    u[4 * m + 3] = _mm256_unpackhi_epi32(s[4 * m + 1], s[4 * m + 3]);
+  }
+  for (int m = 0; m < 4; ++m) {
+    w[2 * m] = _mm256_unpacklo_epi64(u[m], u[m + 4]);
+    w[2 * m + 1] = _mm256_unpackhi_epi64(u[m], u[m + 4]);
+  }
+}
+
+// Stores transpose8x16's w[c] for 8 pixels: low half to row c, high half
+// to row c + 8 (rows rowLen entries apart, from `row`, 16-byte aligned).
+// The stride is hidden from the optimizer (an empty asm): otherwise GCC
+// keeps the 16 row addresses of a block as loop invariants, spilled to the
+// stack, and loads one for each store; a running pointer costs one add per
+// row instead, and the high half is addressed as row + 8 * stride.
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void storeHalves(std::int16_t* row,
+                                                                    std::ptrdiff_t rowLen,
+                                                                    const __m256i* w) {
+  std::ptrdiff_t stride = rowLen;
+  asm("" : "+r"(stride));
+  for (int c = 0; c < 8; ++c, row += stride) {
+    _mm_store_si128(reinterpret_cast<__m128i*>(row), _mm256_castsi256_si128(w[c]));
+    _mm_store_si128(reinterpret_cast<__m128i*>(row + 8 * stride),
+                    _mm256_extracti128_si256(w[c], 1));
+  }
+}
+
 // Eight int32 lanes divided by 100, truncated (0 <= n < 2^31), without a
 // division: (n + 0.5) / 100 lies at least 0.005 from an integer, and
 // (n + 0.5) * 0.01 in double is within 2^-26 of it, so truncating it gives
@@ -244,6 +300,18 @@ HOROPTER_AVX2_TARGET inline __m256i divideBy100(__m256i n) {
   const __m128i hi = _mm256_cvttpd_epi32(_mm256_mul_pd(
       _mm256_add_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(n, 1)), half), hundredth));
   return _mm256_set_m128i(hi, lo);
+}
+
+// b where mask, else a, for a mask of whole 16-bit lanes (all ones or
+// zeros): vpblendvb. Written as asm because GCC 12 folds
+// _mm256_blendv_epi8 into a select on "mask < 0" per byte and emits that
+// as a byte compare (vpcmpgtb) plus the blend: one more instruction per
+// merge in the winner searches (4 M per 1280x720 frame at 128 disparities).
+[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline __m256i blendWords(__m256i a, __m256i b,
+                                                                      __m256i mask) {
+  // The result in a's register: the accumulators are blended in place.
+  asm("vpblendvb %2, %1, %0, %0" : "+x"(a) : "xm"(b), "x"(mask));
+  return a;
 }
 
 // The least key over lanes k = 0 .. count - 1 (lane k's 16 entries at
@@ -275,9 +343,9 @@ template <int kShift, int kBlocks>
                              bestN = _mm256_min_epi16(bestN, now);
                            } else {
                              better = _mm256_cmpgt_epi16(_mm256_and_si256(bestN, high), now);
-                             bestN = _mm256_blendv_epi8(bestN, now, better);
+                             bestN = blendWords(bestN, now, better);
                            }
-                           indexN = _mm256_blendv_epi8(indexN, indexK, better);
+                           indexN = blendWords(indexN, indexK, better);
                          };
   // Named accumulators, not arrays: with arrays GCC copies every one at
   // every step.
@@ -339,7 +407,7 @@ class Matcher {
                                const ConstImageView& texture, const StereoParams& params,
                                const BelowRangeGuard& guard, const ImageView& disparity,
                                const ImageView& winnerRight, const MatchRegion& region,
-                               int keyShift)
+                               int keyShift, bool narrow)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -365,6 +433,7 @@ class Matcher {
         rowLen_(rowEntries(padded_ + 2 * edge_)),
         useTexture_(params.textureThreshold > 0),
         keyShift_(keyShift),
+        narrow_(narrow),
         keyInit_(_mm256_add_epi16(
             _mm256_set1_epi16(static_cast<std::int16_t>(kBias)),
             _mm256_and_si256(_mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7),
@@ -714,9 +783,16 @@ class Matcher {
     int xr0 = xrLow;
     for (int i0 = 0; i0 < pixels_; i0 += kTile) {
       const int i1 = std::min(i0 + kTile, pixels_);
-      for (int p = 0; p < pairs; ++p)
-        sweepPair<kSlide>(p, state[p], i0, i1);
-      if (odd) sweepLast<kSlide>(state[pairs], i0, i1);
+      // The first row (no slide) has no differences of rows to take.
+      if (kSlide && narrow_) {
+        for (int p = 0; p < pairs; ++p)
+          sweepPair<kSlide, true>(p, state[p], i0, i1);
+        if (odd) sweepLast<kSlide, true>(state[pairs], i0, i1);
+      } else {
+        for (int p = 0; p < pairs; ++p)
+          sweepPair<kSlide, false>(p, state[p], i0, i1);
+        if (odd) sweepLast<kSlide, false>(state[pairs], i0, i1);
+      }
       if (guardGroups_ > 0) fixGuardTile(i0, i1);
       const auto decide = [&](auto shift) HOROPTER_AVX2_TARGET {
         constexpr int kShift = decltype(shift)::value;
@@ -750,7 +826,7 @@ class Matcher {
   // (kSlide) and the window cost takes it in and drops column x - 2r - 1;
   // every 16 pixels, their 16 cost vectors are transposed in registers and
   // stored by lane.
-  template <bool kSlide>
+  template <bool kSlide, bool kNarrow>
   HOROPTER_AVX2_TARGET void sweepLast(SweepState& s, int i0, int i1) {
     const int g = sweepGroups_ - 1, pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
@@ -768,7 +844,7 @@ class Matcher {
     const auto step = [&](bool moveDrop) HOROPTER_AVX2_TARGET {
       __m256i c = load(col);
       if constexpr (kSlide) {
-        const __m256i ad = absDiff8(_mm256_set1_epi16(*li), loadu(ri));
+        const __m256i ad = absDiffRows<kNarrow>(_mm256_set1_epi16(*li), loadu(ri));
         c = _mm256_add_epi16(c, _mm256_maddubs_epi16(ad, plusMinus));
         store(col, c);
       }
@@ -807,7 +883,7 @@ class Matcher {
 
   // The sweep of groups 2p and 2p + 1 together over pixels [i0, i1): as
   // sweepLast's, sharing the broadcast left pixels.
-  template <bool kSlide>
+  template <bool kSlide, bool kNarrow>
   HOROPTER_AVX2_TARGET void sweepPair(int p, SweepState& s, int i0, int i1) {
     const int pixels = pixels_, window = 2 * r_ + 1;
     const std::ptrdiff_t rowLen = rowLen_;
@@ -827,9 +903,10 @@ class Matcher {
       __m256i cA = load(colA), cB = load(colB);
       if constexpr (kSlide) {
         const __m256i l = _mm256_set1_epi16(*li);
-        cA = _mm256_add_epi16(cA, _mm256_maddubs_epi16(absDiff8(l, loadu(ri)), plusMinus));
-        cB = _mm256_add_epi16(cB,
-                              _mm256_maddubs_epi16(absDiff8(l, loadu(ri + 2 * kLanes)), plusMinus));
+        cA = _mm256_add_epi16(cA,
+                              _mm256_maddubs_epi16(absDiffRows<kNarrow>(l, loadu(ri)), plusMinus));
+        cB = _mm256_add_epi16(
+            cB, _mm256_maddubs_epi16(absDiffRows<kNarrow>(l, loadu(ri + 2 * kLanes)), plusMinus));
         store(colA, cA);
         store(colB, cB);
       }
@@ -849,17 +926,21 @@ class Matcher {
         step(false);
     }
     std::int16_t* const base = costs(p * 2 * kLanes + sweepMin_ - minD_);
-    for (int b = i0; b < i1; b += kLanes) {
-      __m256i v[kLanes], w[kLanes], t[kLanes];
-      if (b + kLanes <= pixels) {
-#pragma GCC unroll 16
-        for (int j = 0; j < kLanes; ++j) {
+    // Half blocks of 8 pixels: each group's 8 cost vectors are transposed
+    // within 128-bit lanes and stored as halves (transpose8x16), so that 16
+    // vectors, not 32, are live (fewer spills) and no lane exchange is needed.
+    constexpr int kHalf = kLanes / 2;
+    for (int b = i0; b < i1; b += kHalf) {
+      __m256i v[kHalf], w[kHalf], t[kHalf];
+      if (b + kHalf <= pixels) {
+#pragma GCC unroll 8
+        for (int j = 0; j < kHalf; ++j) {
           step(true);
           v[j] = costA;
           w[j] = costB;
         }
       } else {
-        for (int j = 0; j < kLanes; ++j) {
+        for (int j = 0; j < kHalf; ++j) {
           if (b + j < pixels) {
             step(true);
             v[j] = costA;
@@ -869,12 +950,10 @@ class Matcher {
           }
         }
       }
-      transpose16(v, t);
-      for (int k = 0; k < kLanes; ++k)
-        store(base + k * rowLen + b, t[k]);
-      transpose16(w, t);
-      for (int k = 0; k < kLanes; ++k)
-        store(base + (kLanes + k) * rowLen + b, t[k]);
+      transpose8x16(v, t);
+      storeHalves(base + b, rowLen, t);
+      transpose8x16(w, t);
+      storeHalves(base + kLanes * rowLen + b, rowLen, t);
     }
     s.colA = colA;
     s.colB = colB;
@@ -940,11 +1019,16 @@ class Matcher {
         static_assert(kBlocks == 4);
         c = costs(0) + i0;
         __m256i w0 = within[0], w1 = within[1], w2 = within[2], w3 = within[3];
-        for (int k = 0; k < count; ++k, c += rowLen) {
-          w0 = _mm256_add_epi16(w0, _mm256_cmpgt_epi16(keyLimit[0], load(c)));
-          w1 = _mm256_add_epi16(w1, _mm256_cmpgt_epi16(keyLimit[1], load(c + kLanes)));
-          w2 = _mm256_add_epi16(w2, _mm256_cmpgt_epi16(keyLimit[2], load(c + 2 * kLanes)));
-          w3 = _mm256_add_epi16(w3, _mm256_cmpgt_epi16(keyLimit[3], load(c + 3 * kLanes)));
+        // Four lanes per iteration (count is a multiple of 16): the loop's
+        // own 4 or 5 instructions per lane were a third of what it took.
+        for (int k = 0; k < count; k += 4) {
+#pragma GCC unroll 4
+          for (int u = 0; u < 4; ++u, c += rowLen) {
+            w0 = _mm256_add_epi16(w0, _mm256_cmpgt_epi16(keyLimit[0], load(c)));
+            w1 = _mm256_add_epi16(w1, _mm256_cmpgt_epi16(keyLimit[1], load(c + kLanes)));
+            w2 = _mm256_add_epi16(w2, _mm256_cmpgt_epi16(keyLimit[2], load(c + 2 * kLanes)));
+            w3 = _mm256_add_epi16(w3, _mm256_cmpgt_epi16(keyLimit[3], load(c + 3 * kLanes)));
+          }
         }
         within[0] = w0;
         within[1] = w1;
@@ -1155,6 +1239,8 @@ class Matcher {
   // Costs are kept as keys G * C + (k mod G), G = 2^keyShift (see Strategy);
   // keyInit_ is the running sums' start: the bias and each lane's k mod G.
   const int keyShift_;
+  // Every |L - R| <= 127: the sweep takes it as a signed byte difference.
+  const bool narrow_;
   const __m256i keyInit_;
   AlignedArray<std::int16_t> columnSum_;       // [g][x - xa + 1][16]; column xa - 1 stays zero
   AlignedArray<std::uint16_t> columnTexture_;  // [x - xa + 1]; index 0 stays zero
@@ -1211,7 +1297,8 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
   int shift = 0;
   while (shift < 3 && ((maxDiff * side * side) << (shift + 1)) + (2 << shift) - 1 < 0xFFFF)
     ++shift;
-  Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift);
+  Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift,
+                  maxDiff <= 127);
   matcher.run(region.y0, region.y1);
 }
 

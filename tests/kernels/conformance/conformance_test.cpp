@@ -430,6 +430,22 @@ std::vector<MatchCase> matchCases() {
       cases.push_back({w, 15 + k % 4, p, kPatterns[k % 5], shift, k % 4 != 3});
       ++k;
     }
+    // Every count of region pixels modulo 16 with one pair of 16-disparity
+    // groups: the AVX2 sweep stores a pair's costs in half blocks of 8
+    // pixels, the last one padded with "no cost". Region pixels are
+    // w - 2r - (numDisparities - 1) = 48 + extra here, for both ranges.
+    for (int extra = 0; extra < 16; ++extra) {
+      StereoParams p;
+      p.numDisparities = 32;
+      p.blockSize = 7;
+      p.minDisparity = (extra % 2 == 0) ? 0 : -5;
+      p.uniquenessRatio = (extra % 3 == 0) ? 0 : 15;
+      p.textureThreshold = (extra % 4 == 0) ? 0 : 10;
+      const int w = 2 * (p.blockSize / 2) + (p.numDisparities - 1) + 48 + extra;
+      EXPECT_EQ(matchRegion(w, 10, p).x1 - matchRegion(w, 10, p).x0, 48 + extra);
+      cases.push_back(
+          {w, 10 + extra % 3, p, kPatterns[extra % 5], p.minDisparity + 11, extra % 2 == 0});
+    }
     for (int blockSize : {15, 17, 25, 33, 51}) {
       for (Pattern pattern : {Pattern::Saturated, Pattern::Textured}) {
         for (bool prefiltered : {false, true}) {
