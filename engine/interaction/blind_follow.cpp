@@ -4,12 +4,19 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace horopter::detail {
 
 namespace {
 constexpr double kMinDeviation = 2.0;  // grey levels
+// A match found far from the track must also look like the hand in level
+// and contrast, which normalised cross-correlation ignores: without this,
+// searches of the band held hand tracks for 9-19 frames on static matches
+// at the image's lower left (tuning seeds 10352-10365).
+constexpr double kAlikeMeanFraction = 0.25;
+constexpr double kAlikeDeviationRatio = 1.5;
 }  // namespace
 
 double validDisparityFraction(const cv::Mat& disparity, cv::Point2f at, int halfPx) {
@@ -62,6 +69,51 @@ std::optional<cv::Point2f> PatchFollower::find(const cv::Mat& grey, cv::Point2f 
   if (!(best >= minScore)) return std::nullopt;
   return cv::Point2f(static_cast<float>(window.x + where.x + side / 2),
                      static_cast<float>(window.y + where.y + side / 2));
+}
+
+std::optional<cv::Point2f> PatchFollower::findAlikeIn(const cv::Mat& grey, cv::Rect centres,
+                                                      double minScore) const {
+  if (patch_.empty() || grey.empty() || grey.type() != CV_8UC1 || centres.empty())
+    return std::nullopt;
+  const int side = patch_.cols;
+  const cv::Rect window = cv::Rect(centres.x - side / 2, centres.y - side / 2,
+                                   centres.width + side - 1, centres.height + side - 1) &
+                          cv::Rect(0, 0, grey.cols, grey.rows);
+  if (window.width < side || window.height < side) return std::nullopt;
+  cv::Mat score;
+  cv::matchTemplate(grey(window), patch_, score, cv::TM_CCOEFF_NORMED);
+  // Each placement's mean and deviation (box means anchored at the
+  // placement's corner, as matchTemplate's score is).
+  cv::Mat level, square;
+  cv::Mat window32;
+  grey(window).convertTo(window32, CV_32F);
+  cv::boxFilter(window32, level, CV_32F, cv::Size(side, side), cv::Point(0, 0));
+  cv::boxFilter(window32.mul(window32), square, CV_32F, cv::Size(side, side), cv::Point(0, 0));
+  cv::Scalar patchMean, patchDeviation;
+  cv::meanStdDev(patch_, patchMean, patchDeviation);
+  double best = -2;
+  cv::Point where;
+  for (int y = 0; y < score.rows; ++y)
+    for (int x = 0; x < score.cols; ++x) {
+      const double s = score.at<float>(y, x);
+      if (!(s > best)) continue;
+      const double mean = level.at<float>(y, x);
+      const double deviation = std::sqrt(std::max(0.0, square.at<float>(y, x) - mean * mean));
+      if (std::abs(mean - patchMean[0]) > kAlikeMeanFraction * patchMean[0] ||
+          deviation > kAlikeDeviationRatio * patchDeviation[0] ||
+          deviation * kAlikeDeviationRatio < patchDeviation[0])
+        continue;
+      best = s;
+      where = {x, y};
+    }
+  if (!(best >= minScore)) return std::nullopt;
+  return cv::Point2f(static_cast<float>(window.x + where.x + side / 2),
+                     static_cast<float>(window.y + where.y + side / 2));
+}
+
+bool appearedSince(const PatchFollower& follower, const cv::Mat& before, cv::Point2f at,
+                   int radiusPx, double minScore) {
+  return before.empty() || !follower.find(before, at, at, radiusPx, minScore);
 }
 
 }  // namespace horopter::detail

@@ -18,6 +18,16 @@ double validDisparityFraction(const cv::Mat& disparity, cv::Point2f at, int half
 
 // One hand's appearance: a square grey patch, kept from the last frame the
 // hand was detected in.
+class PatchFollower;
+
+// Whether what `follower`'s look matches at `at` now is new there: the look
+// matches nothing within `radiusPx` of `at` in `before` (the image of its
+// last detection) by `minScore`. Skin-coloured clutter matches the look
+// wherever it stands, before as now; a hand that left for the band was not
+// there yet. True where `before` is empty.
+bool appearedSince(const PatchFollower& follower, const cv::Mat& before, cv::Point2f at,
+                   int radiusPx, double minScore);
+
 class PatchFollower {
  public:
   // Keeps the patch of `grey` (CV_8UC1) centred on `at`, `sidePx` across;
@@ -32,6 +42,14 @@ class PatchFollower {
   // nothing without a patch or where the window leaves no room.
   std::optional<cv::Point2f> find(const cv::Mat& grey, cv::Point2f a, cv::Point2f b, int searchPx,
                                   double minScore) const;
+
+  // The centre of the best match of the patch among the centres in
+  // `centres` (clipped where the patch would leave the image) whose mean
+  // grey level is within a quarter of the patch's and whose deviation is
+  // within a factor 1.5 of it, if it scores at least `minScore`; nothing
+  // without a patch or room.
+  std::optional<cv::Point2f> findAlikeIn(const cv::Mat& grey, cv::Rect centres,
+                                         double minScore) const;
 
  private:
   cv::Mat patch_;

@@ -210,6 +210,20 @@ bool stereoBlindAt(cv::Point2f predicted, double handDisparity, double validFrac
   return outOfRightView || tooNear || o.blindTextureless > 0;
 }
 
+std::optional<cv::Rect> rightViewBandWindow(cv::Point2f predicted, cv::Point2f lastSeen,
+                                            double handDisparity, double fw, cv::Size image,
+                                            const TrackerOptions& o) {
+  if (!(o.bandSearchFaces > 0) || !(handDisparity > 0)) return std::nullopt;
+  const double edge = handDisparity + o.blindBandFaces * fw;  // the band is left of it
+  if (std::min(predicted.x, lastSeen.x) > edge + o.bandSearchFaces * fw) return std::nullopt;
+  const double top = std::min(predicted.y, lastSeen.y) - fw;
+  const double bottom = std::max(predicted.y, lastSeen.y) + fw;
+  const cv::Rect band(0, cvFloor(top), cvCeil(edge), cvFloor(bottom) - cvFloor(top) + 1);
+  const cv::Rect window = band & cv::Rect(0, 0, image.width, image.height);
+  if (window.empty()) return std::nullopt;
+  return window;
+}
+
 void followBlindWhereMissed(const std::array<HandTrack, 2>& hands, HandFrame& f,
                             const std::function<bool(int)>& follow) {
   for (int k = 0; k < 2; ++k) {
@@ -232,7 +246,10 @@ void moveToSolidCandidates(std::array<HandTrack, 2>& hands, HandFrame& f, const 
   for (int k = 0; k < 2; ++k) {
     HandTrack& hand = hands[static_cast<std::size_t>(k)];
     HandStep& step = f.steps[static_cast<std::size_t>(k)];
-    if (!hand.track || step.followedBlind || (step.updated && solidCandidate(f, *step.held, o)))
+    // A look found by searching the whole band may be a false match there
+    // (a look is no proof): a whole hand on its side outweighs it.
+    if (!hand.track || (step.followedBlind && !step.lookYields) ||
+        (step.held && solidCandidate(f, *step.held, o)))
       continue;
     const std::optional<std::size_t> best = nearestFreeCandidate(
         f.candidates, f.taken,
@@ -242,7 +259,8 @@ void moveToSolidCandidates(std::array<HandTrack, 2>& hands, HandFrame& f, const 
         },
         hand.track->position());
     if (!best) continue;
-    if (step.updated) f.taken[*step.held] = false;
+    if (step.held) f.taken[*step.held] = false;
+    step.followedBlind = step.lookYields = false;
     takeCandidate(hand, f, k, *best, /*restart=*/true, o);
   }
 }

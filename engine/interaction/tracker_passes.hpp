@@ -48,6 +48,9 @@ struct HandStep {
   // solid candidate (nothing: none).
   std::optional<std::size_t> held;
   const HandDetection* detectedBy = nullptr;  // this frame's candidate, if any
+  // Followed by a look that was found by a search of the band (this frame or since the last
+  // detection): it gives way to a solid candidate.
+  bool lookYields = false;
 };
 
 // What the hand passes share in one frame.
@@ -149,6 +152,21 @@ void assignGated(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOpt
 bool stereoBlindAt(cv::Point2f predicted, double handDisparity, double validFraction, double fw,
                    const TrackerOptions& o);
 
+// Where a missed hand may have gone out of the right view: a pointing arm
+// stretched out to the person's right reaches the band on the image's left
+// in a few frames, too far from its coasting track for the look's search
+// around it. The centres left of x = d + blindBandFaces face widths (d: the
+// hand's last disparity; the right camera does not see there, so no
+// candidate can hold the hand, and stereo's silence is certain, not a
+// texture doubt), within a face width of the rows between its prediction
+// and where it was last seen, clipped to `image`. Nothing where the band
+// search is off (bandSearchFaces 0), d is unknown, or both the prediction
+// and the last sighting lie more than bandSearchFaces face widths right of
+// the band.
+std::optional<cv::Rect> rightViewBandWindow(cv::Point2f predicted, cv::Point2f lastSeen,
+                                            double handDisparity, double fw, cv::Size image,
+                                            const TrackerOptions& o);
+
 // Each tracked hand missed so far is tried with `follow(k)` (its look, where
 // stereo is blind).
 void followBlindWhereMissed(const std::array<HandTrack, 2>& hands, HandFrame& f,
@@ -156,8 +174,8 @@ void followBlindWhereMissed(const std::array<HandTrack, 2>& hands, HandFrame& f,
 
 // Whether candidate j is solid (a whole hand, not a speck).
 bool solidCandidate(const HandFrame& f, std::size_t j, const TrackerOptions& o);
-// A track held by a weak candidate, or by none, moves to the nearest free
-// solid candidate on its side.
+// A track held by a weak candidate, or by none, or by a look that yields,
+// moves to the nearest free solid candidate on its side.
 void moveToSolidCandidates(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOptions& o);
 
 // A missed track is taken up again at the free candidate nearest where it

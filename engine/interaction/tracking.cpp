@@ -46,12 +46,18 @@ struct BodyTracker::Impl {
   detail::PatchFollower looks[2];  // each hand's last detected patch, for where stereo is blind
   double lastDetectedS[2] = {0, 0};
   double handDisparity[2] = {0, 0};        // px, where last detected (0: unknown)
+  bool bandLook[2] = {false, false};       // followed since a band search found its look
+  cv::Mat detectedGrey[2];                 // the left grey image of each look's detection
   std::optional<hw::HeadAngles> lastPose;  // the previous frame's, with capturePose
   double headDepthM = 0;                   // the head's last measured depth (0: none yet)
   detail::FrameClock clock;
 };
 
 namespace {
+
+// How far from a band search's find the look is sought in the image of
+// its last detection (face widths): a small head turn moves clutter that far.
+constexpr double kAppearedRadiusFaces = 0.25;
 
 // The depth a turn is undone at before the head's depth is measured.
 constexpr double kUnknownDepthM = 1.5;
@@ -102,6 +108,10 @@ std::span<const NumberOption<TrackerOptions>> trackerOptions() {
        &O::blindFollowS},
       {"blindMinScore", "--blind-min-score", "", -1, 1,
        "... where the look correlates by at least this", &O::blindMinScore},
+      {"bandSearchFaces", "--band-search-faces", "face widths", 0, 20,
+       "a missed hand within this distance of the band the right view does not see is looked "
+       "for by its look anywhere in the band (0: off)",
+       &O::bandSearchFaces},
       {"blindTextureless", "--blind-textureless", "", 0, 1,
        "1: a missed hand is blind wherever the front end found no disparity around it, not "
        "only out of the right view or nearer than the range (measured worse: off)",
@@ -145,18 +155,43 @@ bool BodyTracker::followBlind(int k, const StereoFrame& frame, cv::Point2f head,
     return false;
   detail::HandTrack& hand = m.subject.hands[static_cast<std::size_t>(k)];
   const cv::Point2f predicted = hand.track->position();
-  const int third = std::max(1, static_cast<int>(fw / 3));
-  if (!detail::stereoBlindAt(predicted, m.handDisparity[k],
-                             detail::validDisparityFraction(frame.disparity, predicted, third), fw,
-                             o))
-    return false;
-  const std::optional<cv::Point2f> at =
-      m.looks[k].find(frame.leftGrey, predicted, hand.lastSeen,
-                      std::max(1, static_cast<int>(o.blindSearchFaces * fw)), o.blindMinScore);
   const double side = k == 0 ? 1.0 : -1.0;  // the person's left hand is on the image's right
-  if (!at || (at->x - head.x) * side < -o.crossFaceWidths * fw) return false;
-  hand.track->update(*at);
+  const auto onSide = [&](cv::Point2f at) {
+    return (at.x - head.x) * side >= -o.crossFaceWidths * fw;
+  };
+  const int third = std::max(1, static_cast<int>(fw / 3));
+  if (detail::stereoBlindAt(predicted, m.handDisparity[k],
+                            detail::validDisparityFraction(frame.disparity, predicted, third), fw,
+                            o)) {
+    const std::optional<cv::Point2f> at =
+        m.looks[k].find(frame.leftGrey, predicted, hand.lastSeen,
+                        std::max(1, static_cast<int>(o.blindSearchFaces * fw)), o.blindMinScore);
+    if (at && onSide(*at)) {
+      hand.track->update(*at);
+      hand.lastSeen = *at;
+      return true;
+    }
+  }
+  // The hand may have jumped out of the right view, beyond the search
+  // around its track: the band is searched where it is near.
+  const std::optional<cv::Rect> band = detail::rightViewBandWindow(
+      predicted, hand.lastSeen, m.handDisparity[k], fw, frame.leftGrey.size(), o);
+  if (!band) return false;
+  const std::optional<cv::Point2f> at =
+      m.looks[k].findAlikeIn(frame.leftGrey, *band, o.blindMinScore);
+  if (!at || !onSide(*at) ||
+      !detail::appearedSince(m.looks[k], m.detectedGrey[k], *at,
+                             std::max(1, static_cast<int>(kAppearedRadiusFaces * fw)),
+                             o.blindMinScore))
+    return false;
+  // A jump out of the gate restarts the track (an update would turn it
+  // into a velocity that throws the next prediction off the image).
+  if (hand.track->inGate(*at))
+    hand.track->update(*at);
+  else
+    hand.track.emplace(*at, t, o.hands);
   hand.lastSeen = *at;
+  m.bandLook[k] = true;
   return true;
 }
 
@@ -175,6 +210,9 @@ void BodyTracker::rememberLook(int k, const HandDetection* detected, const Stere
     return;
   const cv::Point2f at = detected->centroid;
   m.looks[k].remember(frame.leftGrey, at, std::max(3, static_cast<int>(o.blindPatchFaces * fw)));
+  // Kept for the band search's test that what it finds was not there then
+  // (copied: a capture may reuse its buffers).
+  if (o.bandSearchFaces > 0) frame.leftGrey.copyTo(m.detectedGrey[k]);
   m.lastDetectedS[k] = t;
   const int half = std::max(1, static_cast<int>(0.15 * fw));
   const cv::Point3f p = rigPointFromDisparity(
@@ -203,15 +241,21 @@ TrackingState BodyTracker::update(const StereoFrame& frame, const Detections& de
     detail::assignGated(s.hands, f, o);
     // Where stereo is blind, a hand missed by the detector is followed by
     // its look, before the steps below move it elsewhere.
-    detail::followBlindWhereMissed(s.hands, f,
-                                   [&](int k) { return followBlind(k, frame, f.head, f.fw, t); });
+    detail::followBlindWhereMissed(s.hands, f, [&](int k) {
+      const bool found = followBlind(k, frame, f.head, f.fw, t);
+      f.steps[static_cast<std::size_t>(k)].lookYields = found && m.bandLook[k];
+      return found;
+    });
     detail::moveToSolidCandidates(s.hands, f, o);
     detail::reacquireNearLastSeen(s.hands, f, o);
     detail::jumpAfterCoasting(s.hands, f, o);
     detail::coastOrDrop(s.hands, f, o);
     detail::startNewHands(s.hands, f, o);
-    for (int k = 0; k < 2; ++k)
-      rememberLook(k, f.steps[static_cast<std::size_t>(k)].detectedBy, frame, f.fw, t);
+    for (int k = 0; k < 2; ++k) {
+      const detail::HandStep& step = f.steps[static_cast<std::size_t>(k)];
+      if (step.detectedBy || !s.hands[static_cast<std::size_t>(k)].track) m.bandLook[k] = false;
+      rememberLook(k, step.detectedBy, frame, f.fw, t);
+    }
   }
 
   const TrackingState out =

@@ -247,6 +247,35 @@ TEST(HandTracking, AHandWhereStereoIsBlindIsFollowedByItsLook) {
   }
 }
 
+// A hand that jumps out of the right view in one frame (a pointing arm), far
+// beyond the search around its track, is found by its look in the band the
+// right view does not see; without the band search it coasts.
+TEST(HandTracking, AHandThatJumpsIntoTheBandIsFoundThere) {
+  for (const double bandFaces : {3.0, 0.0}) {
+    SCOPED_TRACE(bandFaces > 0 ? "band searched" : "band not searched");
+    TrackerOptions o = immediateElection();
+    o.rig = RectifiedGeometry{500, 320, 0.12, 240};
+    o.maxDisparityPx = 95;
+    o.bandSearchFaces = bandFaces;
+    BodyTracker tracker(o);
+    BodySample body;
+    for (int i = 0; i < 7; ++i) {
+      const bool jumped = i >= 4;
+      const cv::Point2f hand(jumped ? 60.0f : 200.0f, 300);
+      std::vector<HandDetection> candidates = {::horopter::hand(kLeftRest)};
+      if (!jumped) candidates.push_back(::horopter::hand(hand));
+      Frame frame = frameWith(i, candidates);
+      paintViews(frame, hand, 70);
+      updateWith(tracker, frame, body);
+      ASSERT_TRUE(body.rightHand.tracked) << "frame " << i;
+      if (!jumped) continue;
+      EXPECT_EQ(body.rightHand.observed, bandFaces > 0) << "frame " << i;
+      EXPECT_EQ(near(body.rightHand.image, hand), bandFaces > 0)
+          << "frame " << i << " at " << body.rightHand.image;
+    }
+  }
+}
+
 // Blind following needs the front end to have found no depth there: a hand
 // missed where the disparity is valid coasts, whatever its last disparity.
 TEST(HandTracking, AHandMissedWhereStereoSeesIsNotFollowedByItsLook) {

@@ -11,6 +11,7 @@
 
 #include "hand_candidate.hpp"
 #include "horopter/interaction/tracking.hpp"
+#include "interaction/blind_follow.hpp"
 #include "interaction/tracker_passes.hpp"
 
 namespace horopter::detail {
@@ -380,6 +381,78 @@ TEST(TrackerPasses, StereoIsBlindOnlyWhereTheFrontEndFoundNoDepth) {
   EXPECT_FALSE(stereoBlindAt(middle, 60, 0.5, kFw, o));
 }
 
+TEST(TrackerPasses, TheRightViewsBandIsSearchedOnlyNearItAndWithinItsRows) {
+  TrackerOptions o;  // band 0.5 faces (30 px); searched from 3 faces (180 px) right of it
+  ASSERT_GT(o.bandSearchFaces, 0);
+  const cv::Size image(640, 480);
+  // d 70: the band is x < 100; a track at 250 (within 280) searches it, in
+  // the rows from the prediction's to the last sighting's, a face either side.
+  const std::optional<cv::Rect> w = rightViewBandWindow({250, 300}, {270, 340}, 70, kFw, image, o);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(*w, cv::Rect(0, 240, 100, 161));
+  // Either the prediction or the last sighting near the band will do.
+  EXPECT_TRUE(rightViewBandWindow({400, 300}, {280, 300}, 70, kFw, image, o));
+  EXPECT_TRUE(rightViewBandWindow({280, 300}, {400, 300}, 70, kFw, image, o));
+  EXPECT_FALSE(rightViewBandWindow({281, 300}, {400, 300}, 70, kFw, image, o));
+  // The last disparity unknown: no band.
+  EXPECT_FALSE(rightViewBandWindow({90, 300}, {90, 300}, 0, kFw, image, o));
+  // Rows are clipped to the image.
+  const std::optional<cv::Rect> top = rightViewBandWindow({90, 20}, {90, 30}, 70, kFw, image, o);
+  ASSERT_TRUE(top);
+  EXPECT_EQ(*top, cv::Rect(0, 0, 100, 91));
+  // Off.
+  o.bandSearchFaces = 0;
+  EXPECT_FALSE(rightViewBandWindow({90, 300}, {90, 300}, 70, kFw, image, o));
+}
+
+TEST(TrackerPasses, ALookFoundInTheBandMustMatchInLevelAndContrast) {
+  cv::Mat grey(200, 200, CV_8UC1, cv::Scalar(128));
+  cv::Mat look(21, 21, CV_8UC1);
+  cv::RNG texture(5);
+  texture.fill(look, cv::RNG::UNIFORM, 90, 170);
+  look.copyTo(grey(cv::Rect(40, 40, 21, 21)));
+  PatchFollower follower;
+  follower.remember(grey, {50, 50}, 21);
+  ASSERT_FALSE(follower.empty());
+  // The same texture darker and flatter elsewhere: correlation alone takes it.
+  cv::Mat dim;
+  look.convertTo(dim, CV_8UC1, 0.4, 10);
+  grey(cv::Rect(40, 40, 21, 21)).setTo(128);
+  dim.copyTo(grey(cv::Rect(140, 140, 21, 21)));
+  const cv::Rect everywhere(0, 0, 200, 200);
+  const std::optional<cv::Point2f> any = follower.find(grey, {100, 100}, {100, 100}, 90, 0.7);
+  ASSERT_TRUE(any);
+  EXPECT_TRUE(same(*any, {150, 150}));
+  EXPECT_FALSE(follower.findAlikeIn(grey, everywhere, 0.7));
+  // The look itself, somewhat brighter (within a quarter), is found.
+  cv::Mat brighter;
+  look.convertTo(brighter, CV_8UC1, 1.0, 20);
+  brighter.copyTo(grey(cv::Rect(100, 20, 21, 21)));
+  const std::optional<cv::Point2f> alike = follower.findAlikeIn(grey, everywhere, 0.7);
+  ASSERT_TRUE(alike);
+  EXPECT_TRUE(same(*alike, {110, 30}));
+  // Only centres inside the given box count.
+  EXPECT_FALSE(follower.findAlikeIn(grey, cv::Rect(0, 0, 90, 200), 0.7));
+}
+
+TEST(TrackerPasses, ALookFoundWhereItAlreadyWasHasNotAppeared) {
+  cv::Mat before(200, 200, CV_8UC1);
+  cv::RNG background(11);
+  background.fill(before, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat look(21, 21, CV_8UC1);
+  cv::RNG texture(5);
+  texture.fill(look, cv::RNG::UNIFORM, 90, 170);
+  look.copyTo(before(cv::Rect(40, 40, 21, 21)));   // the hand, detected here
+  look.copyTo(before(cv::Rect(140, 40, 21, 21)));  // clutter that looks like it
+  PatchFollower follower;
+  follower.remember(before, {50, 50}, 21);
+  ASSERT_FALSE(follower.empty());
+  EXPECT_FALSE(appearedSince(follower, before, {150, 50}, 5, 0.7));  // the clutter
+  EXPECT_FALSE(appearedSince(follower, before, {153, 47}, 5, 0.7));  // ... a little moved
+  EXPECT_TRUE(appearedSince(follower, before, {150, 150}, 5, 0.7));  // the background
+  EXPECT_TRUE(appearedSince(follower, cv::Mat(), {150, 50}, 5, 0.7));
+}
+
 TEST(TrackerPasses, OnlyMissedTracksAreFollowedByTheirLook) {
   std::array<HandTrack, 2> hands = {handAt({420, 380}, 0.0), handAt({220, 380}, 0.0)};
   const std::vector<HandDetection> none;
@@ -431,6 +504,15 @@ TEST(TrackerPasses, ATrackOnASpeckMovesToTheNearestFreeSolidCandidate) {
     EXPECT_EQ(f.steps[0].held, std::optional<std::size_t>(2));
     EXPECT_FALSE(f.steps[1].held);
     EXPECT_EQ(f.taken, (std::vector<bool>{false, false, true, false}));
+  }
+  {  // followed by a look found in a search of the band: a solid candidate wins
+    std::array<HandTrack, 2> hands = {HandTrack{}, handAt({60, 380}, 0.0)};
+    HandFrame f = handFrame(dets);
+    f.steps[1] = {true, true, std::nullopt, nullptr, true};
+    moveToSolidCandidates(hands, f, o);
+    EXPECT_EQ(f.steps[1].held, std::optional<std::size_t>(3));
+    EXPECT_FALSE(f.steps[1].followedBlind || f.steps[1].lookYields);
+    EXPECT_TRUE(same(hands[1].track->position(), {200, 380}));
   }
   {  // a missed track moves too, unless solidHandAreaFaces is 0
     std::array<HandTrack, 2> hands = {HandTrack{}, handAt({250, 380}, 0.0)};

@@ -99,6 +99,15 @@ struct HOROPTER_API TrackerOptions {
   double blindPatchFaces = 0.3;
   double blindSearchFaces = 0.5;
   double blindMinScore = 0.7;
+  // A missed hand whose track or last sighting is within this many face
+  // widths right of the band the right view does not see (x < d +
+  // blindBandFaces face widths) is also looked for by its look anywhere in
+  // the band near its rows (0: off): a pointing arm reaches the band faster
+  // than its track follows. A find counts only where it is like the look in
+  // level and contrast and was not there in the image of the last detection
+  // (skin-coloured clutter is), and a track so followed gives way to a solid
+  // candidate on its side.
+  double bandSearchFaces = 3.0;
   // 1: a missed hand is also blind where the front end found no disparity
   // around its prediction for another cause (no texture: a smooth hand in
   // dim light or noise), not only out of the right view or too near. Off:
