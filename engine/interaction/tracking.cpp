@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -48,6 +49,9 @@ struct BodyTracker::Impl {
   double handDisparity[2] = {0, 0};        // px, where last detected (0: unknown)
   bool bandLook[2] = {false, false};       // followed since a band search found its look
   cv::Mat detectedGrey[2];                 // the left grey image of each look's detection
+  cv::Mat greyCopy;                        // this update's copy, shared by both hands
+  std::uint64_t updates = 0;               // calls of update(), to know the copy's
+  std::uint64_t greyCopyUpdate = 0;        // the update it was copied in (0: none)
   std::optional<hw::HeadAngles> lastPose;  // the previous frame's, with capturePose
   double headDepthM = 0;                   // the head's last measured depth (0: none yet)
   detail::FrameClock clock;
@@ -211,8 +215,15 @@ void BodyTracker::rememberLook(int k, const HandDetection* detected, const Stere
   const cv::Point2f at = detected->centroid;
   m.looks[k].remember(frame.leftGrey, at, std::max(3, static_cast<int>(o.blindPatchFaces * fw)));
   // Kept for the band search's test that what it finds was not there then
-  // (copied: a capture may reuse its buffers).
-  if (o.bandSearchFaces > 0) frame.leftGrey.copyTo(m.detectedGrey[k]);
+  // (copied: a capture may reuse its buffers; once a frame, for both hands;
+  // a fresh buffer, as the other hand may still hold the last one).
+  if (o.bandSearchFaces > 0) {
+    if (m.greyCopyUpdate != m.updates) {
+      m.greyCopy = frame.leftGrey.clone();
+      m.greyCopyUpdate = m.updates;
+    }
+    m.detectedGrey[k] = m.greyCopy;
+  }
   m.lastDetectedS[k] = t;
   const int half = std::max(1, static_cast<int>(0.15 * fw));
   const cv::Point3f p = rigPointFromDisparity(
@@ -226,6 +237,7 @@ TrackingState BodyTracker::update(const StereoFrame& frame, const Detections& de
   Impl& m = *impl_;
   const TrackerOptions& o = options_;
   detail::SubjectTracks& s = m.subject;
+  ++m.updates;
   const double t = detail::frameTimeS(frame, o, m.clock);
   followHeadTurn(frame);
   detail::predictTracks(s, t);
