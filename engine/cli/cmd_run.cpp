@@ -219,8 +219,8 @@ constexpr CommandOption kOptions[] = {
      .max = 8,
      .fallback = "2",
      .help = "run.avi at 1/N of the view's width and height (2: 640x480, a third of the "
-             "full size's encoding cost); the video is encoded on its own thread, the stills "
-             "stay full size"},
+             "full size's encoding cost); a frame only the video shows is drawn at that size, "
+             "the video is encoded on its own thread, the stills stay full size"},
 };
 
 // What `horopter run` does: the pipeline's configuration and the CLI's own
@@ -397,9 +397,11 @@ class Output {
     const bool still = f.index == 0 || f.index == expected_ / 2 || f.index + 1 == expected_;
     // Drawing a view costs a few ms of CPU (text above all): only for the
     // video, the window, the stills, and the last frame when the length is
-    // not known.
+    // not known. A view for the video alone is drawn at the video's size.
     if (job_.until.empty() && (job_.video || job_.display || still || expected_ <= 0)) {
-      const cv::Mat view = annotateFrame(f, job_.config.stereo, fps);
+      const bool videoOnly = !job_.display && !still && expected_ > 0;
+      const cv::Mat view =
+          annotateFrame(f, job_.config.stereo, fps, videoOnly ? job_.videoScale : 1);
       if (job_.video) writeVideo(view);
       if (still) {
         writeStill(view, f.index);

@@ -1,9 +1,11 @@
 #include "run_annotation.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
 #include "horopter/app/robot_stage.hpp"
+#include "horopter/core/error.hpp"
 #include "horopter/interaction/detection.hpp"
 #include "horopter/interaction/tracking.hpp"
 #include "horopter/movement/movement.hpp"
@@ -25,13 +27,14 @@ cv::Mat asBgr(const cv::Mat& image) {
 
 // White text on a darkened band, readable over any image. (A black outline
 // drawn as a second, thick antialiased stroke cost three times as much:
-// putText was most of the annotation's time.)
-void label(cv::Mat& image, const std::string& text, int line) {
+// putText was most of the annotation's time.) `shrink`: the view is drawn
+// at 1/shrink of its full size.
+void label(cv::Mat& image, const std::string& text, int line, int shrink = 1) {
   constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-  constexpr double kScale = 0.55;
+  const double kScale = 0.55 / shrink;
   int baseline = 0;
   const cv::Size extent = cv::getTextSize(text, kFont, kScale, 1, &baseline);
-  const cv::Point at(8, 22 + 22 * line);
+  const cv::Point at(8 / shrink, (22 + 22 * line) / shrink);
   const cv::Rect band =
       cv::Rect(at.x - 4, at.y - extent.height - 4, extent.width + 8, extent.height + baseline + 6) &
       cv::Rect(0, 0, image.cols, image.rows);
@@ -44,39 +47,60 @@ void label(cv::Mat& image, const std::string& text, int line) {
 
 // Faces (green boxes), hand candidates (cyan rings), the subject's tracks
 // (head H, the person's own left L and right R hands; filled when observed
-// this frame, hollow when coasting) and the body triangle with its incentre.
-void drawPeople(cv::Mat& image, const Frame& frame) {
+// this frame, hollow when coasting) and the body triangle with its incentre,
+// on an image 1/shrink of the frame's size.
+void drawPeople(cv::Mat& image, const Frame& frame, int shrink) {
+  const float k = 1.0F / static_cast<float>(shrink);
+  auto at = [k](cv::Point2f p) { return p * k; };
+  auto px = [shrink](int length) { return std::max(1, length / shrink); };
   if (frame.detections) {
-    for (const FaceDetection& f : frame.detections->faces)
-      cv::rectangle(image, f.box, f.insideZone ? cv::Scalar(0, 220, 0) : cv::Scalar(0, 120, 0), 2);
+    for (const FaceDetection& f : frame.detections->faces) {
+      const cv::Rect box(f.box.x / shrink, f.box.y / shrink, f.box.width / shrink,
+                         f.box.height / shrink);
+      cv::rectangle(image, box, f.insideZone ? cv::Scalar(0, 220, 0) : cv::Scalar(0, 120, 0),
+                    px(2));
+    }
     for (const HandDetection& h : frame.detections->hands)
-      cv::circle(image, h.centroid, 6, cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+      cv::circle(image, at(h.centroid), px(6), cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
   }
   if (!frame.tracking) return;
   const TrackingState& t = *frame.tracking;
   const cv::Scalar colour =
       t.election == ElectionState::Godfather ? cv::Scalar(255, 0, 255) : cv::Scalar(0, 165, 255);
   if (t.triangle) {
-    const cv::Point2f v[3] = {t.triangle->head, t.triangle->leftHand, t.triangle->rightHand};
+    const cv::Point2f v[3] = {at(t.triangle->head), at(t.triangle->leftHand),
+                              at(t.triangle->rightHand)};
     for (int i = 0; i < 3; ++i)
       cv::line(image, v[i], v[(i + 1) % 3], colour, 1, cv::LINE_AA);
-    cv::circle(image, t.triangle->incentre, 4, colour, cv::FILLED, cv::LINE_AA);
+    cv::circle(image, at(t.triangle->incentre), px(4), colour, cv::FILLED, cv::LINE_AA);
   }
   const std::pair<const PartState*, const char*> parts[] = {
       {&t.head, "H"}, {&t.leftHand, "L"}, {&t.rightHand, "R"}};
   for (const auto& [part, name] : parts) {
     if (!part->tracked) continue;
-    cv::circle(image, part->image, 9, colour, part->observed ? cv::FILLED : 2, cv::LINE_AA);
-    cv::putText(image, name, part->image + cv::Point2f(10, -10), cv::FONT_HERSHEY_SIMPLEX, 0.6,
-                colour, 2, cv::LINE_AA);
+    cv::circle(image, at(part->image), px(9), colour, part->observed ? cv::FILLED : px(2),
+               cv::LINE_AA);
+    cv::putText(image, name, at(part->image + cv::Point2f(10, -10)), cv::FONT_HERSHEY_SIMPLEX,
+                0.6 / shrink, colour, px(2), cv::LINE_AA);
   }
 }
 
 }  // namespace
 
-cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps) {
-  const cv::Mat left = asBgr(frame.left);
-  const cv::Size size = left.size();
+cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps, int shrink) {
+  if (shrink < 1) throw Error("the annotated view's shrink factor must be at least 1");
+  const cv::Mat fullLeft = asBgr(frame.left);
+  const cv::Size size(fullLeft.cols / shrink, fullLeft.rows / shrink);
+  if (size.width < 1 || size.height < 1) throw Error("the frame is too small for this shrink");
+  // Drawn at the size it is shown: the image panels' pixels cost a
+  // shrink-squared less, and a video frame needs no resize afterwards.
+  cv::Mat left = fullLeft, disparity = frame.disparity, mask = frame.mask;
+  if (shrink > 1) {
+    cv::resize(fullLeft, left, size, 0, 0, cv::INTER_AREA);
+    if (disparity.size() == fullLeft.size())
+      cv::resize(frame.disparity, disparity, size, 0, 0, cv::INTER_NEAREST);
+    if (mask.size() == fullLeft.size()) cv::resize(frame.mask, mask, size, 0, 0, cv::INTER_NEAREST);
+  }
   // Not cleared as a whole: every panel is painted below (filling the
   // mosaic cost a tenth of drawing it).
   const cv::Scalar background(24, 24, 24);
@@ -84,29 +108,33 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
 
   cv::Mat topLeft = mosaic(cv::Rect(0, 0, size.width, size.height));
   left.copyTo(topLeft);
-  if (!frame.mask.empty()) {
-    const cv::Rect roi = cv::boundingRect(frame.mask);
-    if (roi.area() > 0) cv::rectangle(topLeft, roi, cv::Scalar(0, 255, 255), 2);
+  if (mask.size() == size) {
+    const cv::Rect roi = cv::boundingRect(mask);
+    if (roi.area() > 0)
+      cv::rectangle(topLeft, roi, cv::Scalar(0, 255, 255), std::max(1, 2 / shrink));
   }
-  drawPeople(topLeft, frame);
-  label(topLeft, "left, zone ROI", 0);
+  drawPeople(topLeft, frame, shrink);
+  label(topLeft, "left, zone ROI", 0, shrink);
 
   cv::Mat topRight = mosaic(cv::Rect(size.width, 0, size.width, size.height));
-  if (frame.disparity.size() == size) {
-    colorizeDisparity(viewOf(frame.disparity), params).copyTo(topRight);
-    drawDisparityScale(topRight, params);
+  if (disparity.size() == size) {
+    colorizeDisparity(viewOf(disparity), params).copyTo(topRight);
+    drawDisparityScale(topRight, params, shrink);
   } else {
     topRight.setTo(background);
   }
-  label(topRight, "disparity (near red, far blue)", 0);
+  label(topRight, "disparity (near red, far blue)", 0, shrink);
 
   cv::Mat bottomLeft = mosaic(cv::Rect(0, size.height, size.width, size.height));
   cv::Mat dimmed = left * 0.25;
   dimmed.copyTo(bottomLeft);
-  if (!frame.mask.empty()) left.copyTo(bottomLeft, frame.mask);
-  label(bottomLeft, "inside the horopter", 0);
+  if (mask.size() == size) left.copyTo(bottomLeft, mask);
+  label(bottomLeft, "inside the horopter", 0, shrink);
 
-  cv::Mat panel = mosaic(cv::Rect(size.width, size.height, size.width, size.height));
+  // The text panel is drawn at full size and then shrunk: its overlays have
+  // fixed sizes, and small text drawn directly reads worse.
+  cv::Mat shownPanel = mosaic(cv::Rect(size.width, size.height, size.width, size.height));
+  cv::Mat panel = shrink > 1 ? cv::Mat(fullLeft.size(), CV_8UC3) : shownPanel;
   panel.setTo(background);
   char text[160];
   int line = 0;
@@ -158,6 +186,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
   cv::Mat lower = panel(cv::Rect(0, panel.rows / 2, panel.cols, panel.rows - panel.rows / 2));
   if (frame.movement) drawMovementOverlay(lower, *frame.movement);
   if (frame.robot) drawRobotOverlay(lower, *frame.robot);
+  if (shrink > 1) cv::resize(panel, shownPanel, shownPanel.size(), 0, 0, cv::INTER_AREA);
   return mosaic;
 }
 

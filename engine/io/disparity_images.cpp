@@ -39,6 +39,23 @@ void writeImageFile(const std::string& path, const cv::Mat& image, const std::st
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), what);
 }
 
+namespace {
+
+// OpenCV's JET colour map of the levels 0..255 (low = blue, high = red), made
+// once: cv::applyColorMap builds its table on every call.
+const cv::Mat& jetColours() {
+  static const cv::Mat colours = [] {
+    cv::Mat ramp(1, 256, CV_8UC1), jet;
+    for (int i = 0; i < 256; ++i)
+      ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+    cv::applyColorMap(ramp, jet, cv::COLORMAP_JET);
+    return jet;
+  }();
+  return colours;
+}
+
+}  // namespace
+
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params) {
   checkView(disparity, PixelType::S16C1, "disparity");
   const std::int16_t invalid = invalidDisparity(params);
@@ -47,13 +64,7 @@ cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& p
   // One colour per disparity in [lo, hi] (those outside take the ends', as
   // the level saturates): a table lookup per pixel, where a division and
   // the colour map per pixel cost half the annotated view's time.
-  static const cv::Mat jet = [] {
-    cv::Mat ramp(1, 256, CV_8UC1), colours;
-    for (int i = 0; i < 256; ++i)
-      ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
-    cv::applyColorMap(ramp, colours, cv::COLORMAP_JET);  // low = blue, high = red
-    return colours;
-  }();
+  const cv::Mat& jet = jetColours();
   std::vector<cv::Vec3b> colourOf(static_cast<std::size_t>(hi - lo + 1));
   for (int v = lo; v <= hi; ++v)
     colourOf[static_cast<std::size_t>(v - lo)] = jet.at<cv::Vec3b>(
@@ -78,38 +89,43 @@ constexpr int kScaleBarHeight = 8, kScaleMargin = 6, kScaleTextHeight = 14;
 
 }  // namespace
 
-cv::Rect disparityScaleRect(cv::Size view) {
-  // A third of the width, at most 240 px; nothing below 60 px of bar.
-  const int barWidth = std::min(240, view.width / 3);
-  const int height = kScaleBarHeight + kScaleTextHeight + 2 * kScaleMargin;
-  const int width = barWidth + 2 * kScaleMargin;
-  if (barWidth < 60 || view.height < 3 * height) return {};
+cv::Rect disparityScaleRect(cv::Size view, int shrink) {
+  // A third of the width, at most 240 px; nothing below 60 px of bar (each
+  // divided by shrink on a view drawn at 1/shrink of its size).
+  shrink = std::max(1, shrink);
+  const int barWidth = std::min(240 / shrink, view.width / 3);
+  const int height = (kScaleBarHeight + kScaleTextHeight + 2 * kScaleMargin) / shrink;
+  const int width = barWidth + 2 * (kScaleMargin / shrink);
+  if (barWidth < 60 / shrink || view.height < 3 * height) return {};
   return {view.width - width, view.height - height, width, height};
 }
 
-cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params) {
-  const cv::Rect area = disparityScaleRect(view.size());
+cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params, int shrink) {
+  shrink = std::max(1, shrink);
+  const cv::Rect area = disparityScaleRect(view.size(), shrink);
   if (area.empty() || view.type() != CV_8UC3) return {};
   cv::Mat under = view(area);
   under.convertTo(under, -1, 0.3);  // a dark backing, readable over any colour
-  const int barWidth = area.width - 2 * kScaleMargin;
-  cv::Mat level(1, barWidth, CV_8UC1);
+  const int margin = kScaleMargin / shrink, barHeight = kScaleBarHeight / shrink;
+  const int textHeight = kScaleTextHeight / shrink;
+  const double fontScale = kScaleFontScale / shrink;
+  const int barWidth = area.width - 2 * margin;
+  cv::Mat bar(1, barWidth, CV_8UC3);  // the map's own colours
   for (int x = 0; x < barWidth; ++x)
-    level.at<std::uint8_t>(0, x) = cv::saturate_cast<std::uint8_t>(255.0 * x / (barWidth - 1));
-  cv::Mat bar;
-  cv::applyColorMap(level, bar, cv::COLORMAP_JET);  // the map's own colours
-  const cv::Rect barArea(area.x + kScaleMargin, area.y + kScaleMargin, barWidth, kScaleBarHeight);
+    bar.at<cv::Vec3b>(0, x) =
+        jetColours().at<cv::Vec3b>(0, cv::saturate_cast<std::uint8_t>(255.0 * x / (barWidth - 1)));
+  const cv::Rect barArea(area.x + margin, area.y + margin, barWidth, barHeight);
   cv::Mat barView = view(barArea);  // resize writes into it in place: same size and type
   cv::resize(bar, barView, barArea.size(), 0, 0, cv::INTER_NEAREST);
   const int lo = params.minDisparity, hi = params.minDisparity + params.numDisparities;
   const std::string loText = std::to_string(lo) + " px", hiText = std::to_string(hi) + " px";
   int baseline = 0;
-  const int hiWidth = cv::getTextSize(hiText, kScaleFont, kScaleFontScale, 1, &baseline).width;
-  const int textY = barArea.y + kScaleBarHeight + kScaleTextHeight - 2;
+  const int hiWidth = cv::getTextSize(hiText, kScaleFont, fontScale, 1, &baseline).width;
+  const int textY = barArea.y + barHeight + textHeight - 2 / shrink;
   const cv::Scalar white(255, 255, 255);
-  cv::putText(view, loText, {barArea.x, textY}, kScaleFont, kScaleFontScale, white, 1, cv::LINE_AA);
-  cv::putText(view, hiText, {barArea.x + barWidth - hiWidth, textY}, kScaleFont, kScaleFontScale,
-              white, 1, cv::LINE_AA);
+  cv::putText(view, loText, {barArea.x, textY}, kScaleFont, fontScale, white, 1, cv::LINE_AA);
+  cv::putText(view, hiText, {barArea.x + barWidth - hiWidth, textY}, kScaleFont, fontScale, white,
+              1, cv::LINE_AA);
   return area;
 }
 

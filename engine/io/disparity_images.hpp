@@ -17,9 +17,10 @@ cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& p
 // `view` (a BGR image) from the search range's lowest disparity (left, blue)
 // to its highest (right, red), with both values in px at its ends. Returns
 // the rectangle it covers; an empty one (nothing drawn) when the image is
-// too small to hold it. disparityScaleRect gives that rectangle alone.
-cv::Rect disparityScaleRect(cv::Size view);
-cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params);
+// too small to hold it. disparityScaleRect gives that rectangle alone. On a
+// view drawn at 1/shrink of its size, the scale is 1/shrink as large.
+cv::Rect disparityScaleRect(cv::Size view, int shrink = 1);
+cv::Rect drawDisparityScale(cv::Mat& view, const StereoParams& params, int shrink = 1);
 
 // Writes `image` to `path` in the format its extension names (.png, .jpg, ...),
 // every byte checked. Throws horopter::Error naming `what`, the file and the
