@@ -1,9 +1,11 @@
 // intersectCapsule for the pixels of one row, two at a time (SSE2, in the
 // x86-64 baseline). Every lane performs the scalar test's operations in the
 // same order (no fused multiply-adds: -ffp-contract=off), so the hits are
-// bit-identical; lanes that need the end caps (or a ray along the axis) are
-// handed to the scalar test.
+// bit-identical, the end caps (and rays along the axis) included: they are
+// tested two at a time too, as the scalar test does them.
 #pragma once
+
+#include <limits>
 
 #include "synthetic/intersections.hpp"
 #include "synthetic/rasteriser.hpp"
@@ -48,6 +50,23 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
   const __m128d r0y = _mm_mul_pd(set(m.r[0].y), vy), r1y = _mm_mul_pd(set(m.r[1].y), vy),
                 r2y = _mm_mul_pd(set(m.r[2].y), vy);
   const __m128d r0z = set(m.r[0].z), r1z = set(m.r[1].z), r2z = set(m.r[2].z);
+  // An end sphere of centre cc: oc = ray.o - cc and c = oc.oc - r^2 are the
+  // same for every ray (computed as the scalar test does); the ray's tc is
+  // (-b - sqrt(b^2 - dd c)) / dd with b = d.oc.
+  struct Cap {
+    __m128d ocx, ocy, ocz, c;
+    __m128d tc(__m128d dx, __m128d dy, __m128d dz, __m128d dd) const {
+      const __m128d b =
+          _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, ocx), _mm_mul_pd(dy, ocy)), _mm_mul_pd(dz, ocz));
+      const __m128d h = _mm_sub_pd(_mm_mul_pd(b, b), _mm_mul_pd(dd, c));
+      return _mm_div_pd(_mm_sub_pd(_mm_xor_pd(b, _mm_set1_pd(-0.0)), _mm_sqrt_pd(h)), dd);
+    }
+  };
+  auto cap = [&](const Vec3& cc) {
+    const Vec3 oc = camera.centre - cc;
+    return Cap{set(oc.x), set(oc.y), set(oc.z), set(dot(oc, oc) - r * r)};
+  };
+  const Cap capA = cap(p.a), capB = cap(p.b);
   for (; x + 1 < xe; x += 2) {
     const __m128d vx = _mm_loadu_pd(columnX + x);
     const __m128d dx = _mm_add_pd(_mm_add_pd(_mm_mul_pd(r0x, vx), r0y), r0z);
@@ -65,21 +84,43 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
     const __m128d y = _mm_add_pd(set(baoa), _mm_mul_pd(tb, bard));
     const __m128d body = _mm_and_pd(_mm_andnot_pd(misses, cylinder),
                                     _mm_and_pd(_mm_cmpgt_pd(y, zero), _mm_cmplt_pd(y, set(baba))));
-    const int bodyMask = _mm_movemask_pd(body), missMask = _mm_movemask_pd(misses);
-    if (bodyMask == 0 && missMask == 3) continue;
-    // The hit on the body, for the lanes that have one.
+    // The lanes the scalar test sends to the end caps (or a ray along the
+    // axis): neither a miss of the cylinder nor a hit on the body.
+    const __m128d caps = _mm_andnot_pd(_mm_or_pd(misses, body), _mm_cmpeq_pd(zero, zero));
+    const int bodyMask = _mm_movemask_pd(body), capsMask = _mm_movemask_pd(caps);
+    if (bodyMask == 0 && capsMask == 0) continue;
+    // The hit and its point on the axis: on the body, a + (y / baba) ba.
+    const __m128d s = _mm_div_pd(y, set(baba));
+    __m128d t = tb;
+    __m128d px = _mm_add_pd(set(p.a.x), _mm_mul_pd(s, set(ba.x)));
+    __m128d py = _mm_add_pd(set(p.a.y), _mm_mul_pd(s, set(ba.y)));
+    __m128d pz = _mm_add_pd(set(p.a.z), _mm_mul_pd(s, set(ba.z)));
+    __m128d found = body;
+    if (capsMask != 0) {
+      // The caps as the scalar test does them, end a then end b: a sphere's
+      // hit tc counts when 0 < tc < the best so far (a lane that misses the
+      // sphere, h < 0, gets tc = NaN, which never counts).
+      const __m128d inf = set(std::numeric_limits<double>::infinity());
+      const __m128d tcA = capA.tc(dx, dy, dz, dd), tcB = capB.tc(dx, dy, dz, dd);
+      const __m128d takeA = _mm_and_pd(_mm_cmpgt_pd(tcA, zero), _mm_cmplt_pd(tcA, inf));
+      const __m128d bestA = select(takeA, tcA, inf);
+      const __m128d takeB = _mm_and_pd(_mm_cmpgt_pd(tcB, zero), _mm_cmplt_pd(tcB, bestA));
+      const __m128d best = select(takeB, tcB, bestA);
+      t = select(caps, best, t);
+      px = select(caps, select(takeB, set(p.b.x), set(p.a.x)), px);
+      py = select(caps, select(takeB, set(p.b.y), set(p.a.y)), py);
+      pz = select(caps, select(takeB, set(p.b.z), set(p.a.z)), pz);
+      found = _mm_or_pd(found, _mm_and_pd(caps, _mm_or_pd(takeA, takeB)));
+    }
     const __m128d tMax = _mm_loadu_pd(depth + x);
-    const __m128d inRange = _mm_and_pd(_mm_cmpnle_pd(tb, set(kTMin)), _mm_cmpnge_pd(tb, tMax));
-    const int hitMask = _mm_movemask_pd(_mm_and_pd(body, inRange));
+    const __m128d inRange = _mm_and_pd(_mm_cmpnle_pd(t, set(kTMin)), _mm_cmpnge_pd(t, tMax));
+    const int hitMask = _mm_movemask_pd(_mm_and_pd(found, inRange));
+    if (hitMask == 0) continue;  // behind what is there, too near, or no cap
     alignas(16) double out[9][2];
-    if (hitMask != 0) {
-      const __m128d s = _mm_div_pd(y, set(baba));
-      const __m128d px = _mm_add_pd(set(p.a.x), _mm_mul_pd(s, set(ba.x)));
-      const __m128d py = _mm_add_pd(set(p.a.y), _mm_mul_pd(s, set(ba.y)));
-      const __m128d pz = _mm_add_pd(set(p.a.z), _mm_mul_pd(s, set(ba.z)));
-      const __m128d qx = _mm_add_pd(set(camera.centre.x), _mm_mul_pd(tb, dx));
-      const __m128d qy = _mm_add_pd(set(camera.centre.y), _mm_mul_pd(tb, dy));
-      const __m128d qz = _mm_add_pd(set(camera.centre.z), _mm_mul_pd(tb, dz));
+    {
+      const __m128d qx = _mm_add_pd(set(camera.centre.x), _mm_mul_pd(t, dx));
+      const __m128d qy = _mm_add_pd(set(camera.centre.y), _mm_mul_pd(t, dy));
+      const __m128d qz = _mm_add_pd(set(camera.centre.z), _mm_mul_pd(t, dz));
       const __m128d invR = set(p.invRadius);
       const __m128d nx = _mm_mul_pd(invR, _mm_sub_pd(qx, px));
       const __m128d ny = _mm_mul_pd(invR, _mm_sub_pd(qy, py));
@@ -104,7 +145,7 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
       const __m128d v =
           dot3(_mm_sub_pd(qx, set(p.a.x)), _mm_sub_pd(qy, set(p.a.y)), _mm_sub_pd(qz, set(p.a.z)),
                set(p.axis.x), set(p.axis.y), set(p.axis.z));
-      _mm_store_pd(out[0], tb);
+      _mm_store_pd(out[0], t);
       _mm_store_pd(out[1], nx);
       _mm_store_pd(out[2], ny);
       _mm_store_pd(out[3], nz);
@@ -115,13 +156,7 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
       _mm_store_pd(out[8], dz);
     }
     for (int lane = 0; lane < 2; ++lane) {
-      const int bit = 1 << lane;
-      if (missMask & bit) continue;
-      if (!(bodyMask & bit)) {  // the end caps, or along the axis
-        scalar(x + lane);
-        continue;
-      }
-      if (!(hitMask & bit)) continue;  // behind what is there, or too near
+      if (!(hitMask & (1 << lane))) continue;
       Hit& hit = hits[n];
       hit = Hit{};
       hit.t = out[0][lane];

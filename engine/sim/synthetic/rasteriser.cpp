@@ -9,6 +9,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -119,6 +120,12 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                                  camera.width);
     if (!rects.back().empty()) all = all.empty() ? rects.back() : (all | rects.back());
   }
+  // The texture of each primitive's face materials, looked up once.
+  std::vector<std::array<const Texture*, 6>> faceTextures(primitives.size());
+  for (std::size_t i = 0; i < primitives.size(); ++i)
+    for (int face = 0; face < 6; ++face)
+      faceTextures[i][static_cast<std::size_t>(face)] =
+          &texture(primitives[i].materials[face].texture);
   const double pixelMetres = 1.0 / camera.f;
   // The rig direction's x of each column, as Camera::ray computes it.
   std::vector<double> columnX(static_cast<std::size_t>(camera.width));
@@ -155,7 +162,8 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                   const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
                                              hits, xs, test);
                   for (int k = 0; k < n; ++k) {
-                    const cv::Vec3f c = shade(p, rays[k], hits[k], pixelMetres);
+                    const cv::Vec3f c =
+                        shade(p, hits[k], *faceTextures[i][hits[k].face], pixelMetres);
                     depth[xs[k]] = hits[k].t;
                     colour[xs[k]] =
                         cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
@@ -271,11 +279,10 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             const int w = winner[static_cast<std::size_t>(x)];
             if (w < 0) continue;
             winner[static_cast<std::size_t>(x)] = -1;
-            Ray ray;
-            ray.o = camera.centre;
-            ray.d = camera.rigToWorld.apply(Vec3{columnX[static_cast<std::size_t>(x)], rowY, 1.0});
-            const cv::Vec3f c = shade(primitives[static_cast<std::size_t>(w)], ray,
-                                      rowHits[static_cast<std::size_t>(x)], pixelMetres);
+            const std::size_t wi = static_cast<std::size_t>(w);
+            const Hit& hit = rowHits[static_cast<std::size_t>(x)];
+            const cv::Vec3f c =
+                shade(primitives[wi], hit, *faceTextures[wi][hit.face], pixelMetres);
             colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
                                   cv::saturate_cast<uchar>(c[2]));
           }
