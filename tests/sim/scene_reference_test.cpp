@@ -31,7 +31,8 @@ cv::Mat referenceImage(const Camera& camera, std::vector<Primitive> primitives) 
     for (int x = 0; x < camera.width; ++x) {
       Ray ray;
       ray.o = camera.centre;
-      ray.d = camera.rigToWorld.apply(Vec3{(x - camera.cx) / camera.f, (y - camera.cy) / camera.f, 1.0});
+      ray.d = camera.rigToWorld.apply(
+          Vec3{(x - camera.cx) / camera.f, (y - camera.cy) / camera.f, 1.0});
       double depth = std::numeric_limits<double>::infinity();
       const Primitive* winner = nullptr;
       Hit best;
@@ -85,8 +86,8 @@ TEST(SyntheticReference, FramesEqualThePlainRayCaster) {
           << cv::countNonZero(cv::Mat(got != expected).reshape(1)) << " channel values differ";
       comparedPixels += expected.rows * expected.cols;
       // The people must be in view for the test to mean something.
-      peoplePixels += cv::countNonZero(
-          cv::Mat(expected != referenceImage(camera, onlyRoom)).reshape(1));
+      peoplePixels +=
+          cv::countNonZero(cv::Mat(expected != referenceImage(camera, onlyRoom)).reshape(1));
     }
   }
   EXPECT_EQ(comparedPixels, 8 * 240 * 180);
