@@ -31,9 +31,9 @@ cv::Mat asBgr(const cv::Mat& image) {
 // at 1/shrink of its full size.
 void label(cv::Mat& image, const std::string& text, int line, int shrink = 1) {
   constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-  const double kScale = 0.55 / shrink;
+  const double fontScale = 0.55 / shrink;
   int baseline = 0;
-  const cv::Size extent = cv::getTextSize(text, kFont, kScale, 1, &baseline);
+  const cv::Size extent = cv::getTextSize(text, kFont, fontScale, 1, &baseline);
   const cv::Point at(8 / shrink, (22 + 22 * line) / shrink);
   const cv::Rect band =
       cv::Rect(at.x - 4, at.y - extent.height - 4, extent.width + 8, extent.height + baseline + 6) &
@@ -42,7 +42,7 @@ void label(cv::Mat& image, const std::string& text, int line, int shrink = 1) {
     cv::Mat under = image(band);
     under.convertTo(under, -1, 0.35);
   }
-  cv::putText(image, text, at, kFont, kScale, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::putText(image, text, at, kFont, fontScale, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 }
 
 // Faces (green boxes), hand candidates (cyan rings), the subject's tracks
@@ -89,18 +89,19 @@ void drawPeople(cv::Mat& image, const Frame& frame, int shrink) {
 
 cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps, int shrink) {
   if (shrink < 1) throw Error("the annotated view's shrink factor must be at least 1");
-  const cv::Mat fullLeft = asBgr(frame.left);
-  const cv::Size size(fullLeft.cols / shrink, fullLeft.rows / shrink);
+  const cv::Size fullSize = frame.left.size();
+  const cv::Size size(fullSize.width / shrink, fullSize.height / shrink);
   if (size.width < 1 || size.height < 1) throw Error("the frame is too small for this shrink");
   // Drawn at the size it is shown: the image panels' pixels cost a
   // shrink-squared less, and a video frame needs no resize afterwards.
-  cv::Mat left = fullLeft, disparity = frame.disparity, mask = frame.mask;
+  cv::Mat left = frame.left, disparity = frame.disparity, mask = frame.mask;
   if (shrink > 1) {
-    cv::resize(fullLeft, left, size, 0, 0, cv::INTER_AREA);
-    if (disparity.size() == fullLeft.size())
+    cv::resize(frame.left, left, size, 0, 0, cv::INTER_AREA);
+    if (disparity.size() == fullSize)
       cv::resize(frame.disparity, disparity, size, 0, 0, cv::INTER_NEAREST);
-    if (mask.size() == fullLeft.size()) cv::resize(frame.mask, mask, size, 0, 0, cv::INTER_NEAREST);
+    if (mask.size() == fullSize) cv::resize(frame.mask, mask, size, 0, 0, cv::INTER_NEAREST);
   }
+  left = asBgr(left);  // after shrinking: a grey image is converted at the shown size
   // Not cleared as a whole: every panel is painted below (filling the
   // mosaic cost a tenth of drawing it).
   const cv::Scalar background(24, 24, 24);
@@ -134,7 +135,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
   // The text panel is drawn at full size and then shrunk: its overlays have
   // fixed sizes, and small text drawn directly reads worse.
   cv::Mat shownPanel = mosaic(cv::Rect(size.width, size.height, size.width, size.height));
-  cv::Mat panel = shrink > 1 ? cv::Mat(fullLeft.size(), CV_8UC3) : shownPanel;
+  cv::Mat panel = shrink > 1 ? cv::Mat(fullSize, CV_8UC3) : shownPanel;
   panel.setTo(background);
   char text[160];
   int line = 0;
