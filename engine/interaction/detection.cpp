@@ -47,6 +47,18 @@ std::span<const NumberOption<DetectorOptions>> detectorOptions() {
        "a followed face not found again is looked for around its last place this many frames "
        "before a full search",
        &O::followMissFrames},
+      {"followSizeRatio", "--follow-size-ratio", "", 0, 4,
+       "following, the cascade looks for faces from 1/X to X times the followed face's width, "
+       "around where its last step takes it (0: from the smallest face to twice its width, one "
+       "face width around it)",
+       &O::followSizeRatio},
+      {"followSlackFaces", "--follow-slack-faces", "face widths", 0, 10,
+       "with --follow-size-ratio, the window's margin beyond the face's last step",
+       &O::followSlackFaces},
+      {"followFacePx", "--follow-face-px", "px", 0, 200,
+       "with --follow-size-ratio, the image is scaled (at most by --face-scale) so that the "
+       "followed face is this wide (0: --face-scale)",
+       &O::followFacePx},
       {"exhaustiveSearchEvery", "--exhaustive-search-every", "searches", 0, 1000,
        "region, a face followed: full searches look only around skin blobs but one in N "
        "(0: never everywhere)",

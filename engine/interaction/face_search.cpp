@@ -52,6 +52,14 @@ FaceSearch::FaceSearch(const DetectorOptions& o) {
   // The options of detectorOptions() are checked against it (Detector).
   if (!(o.followMarginFaces >= 0 && o.followMarginFaces <= 10) || !(o.skinGuideArea >= 0))
     throw Error("followMarginFaces must be within 0..10 and skinGuideArea >= 0");
+  if (!(o.followSizeRatio == 0 || (o.followSizeRatio >= 1 && o.followSizeRatio <= 4)) ||
+      !(o.followSlackFaces >= 0 && o.followSlackFaces <= 10))
+    throw Error(
+        "followSizeRatio must be 0 (off) or within 1..4, and followSlackFaces within 0..10");
+  if (o.followFacePx != 0 && o.followSizeRatio > 0 && o.followFacePx / o.followSizeRatio < 24)
+    throw Error(
+        "followFacePx over followSizeRatio must be >= 24 (the cascade's window), or followFacePx "
+        "0 (off)");
   if (!(o.depthFacePercentiles[0] >= 0 && o.depthFacePercentiles[0] <= o.depthFacePercentiles[1] &&
         o.depthFacePercentiles[1] <= 1) ||
       !(o.depthFaceMargin >= 1))
@@ -117,6 +125,32 @@ FaceSearch::SizeRange FaceSearch::sizesFromDepth(const DetectorOptions& o, const
           static_cast<int>(std::ceil(k * near * o.depthFaceMargin))};
 }
 
+void FaceSearch::cascadeIn(const DetectorOptions& o, const cv::Mat& colour, const cv::Mat& grey,
+                           const cv::Rect& area, int minPx, int maxPx, double scale,
+                           std::vector<cv::Rect>& boxes) {
+  if (area.width < minPx || area.height < minPx) return;
+  cv::Mat image;
+  if (!grey.empty())
+    image = grey(area);
+  else {
+    cv::cvtColor(colour(area), grey_, cv::COLOR_BGR2GRAY);
+    image = grey_;
+  }
+  if (scale != 1) {
+    cv::resize(image, scaled_, cv::Size(), scale, scale, cv::INTER_AREA);
+    image = scaled_;
+  }
+  const int minSize = std::max(20, cvRound(minPx * scale));
+  const int maxSize = maxPx > 0 ? std::max(minSize, cvRound(maxPx * scale)) : 0;
+  found_.clear();
+  cascade_.detectMultiScale(image, found_, o.scaleFactor, o.minNeighbors, 0,
+                            cv::Size(minSize, minSize), cv::Size(maxSize, maxSize));
+  const double k = 1 / scale;
+  for (const cv::Rect& b : found_)
+    boxes.emplace_back(cvRound(b.x * k) + area.x, cvRound(b.y * k) + area.y, cvRound(b.width * k),
+                       cvRound(b.height * k));
+}
+
 FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& frame,
                                   const cv::Mat& colour, const cv::Rect& roi,
                                   const cv::Mat& zoneSkin) {
@@ -125,7 +159,8 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& f
   FaceSearchResult result;
   // Faces: the cascade is unsteady on a face at the border of its image, so
   // the region's rectangle gets half the smallest face of margin.
-  int minFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, colour.cols / 16);
+  const int smallestFace = o.minFacePx > 0 ? o.minFacePx : std::max(20, colour.cols / 16);
+  int minFace = smallestFace;
   int maxFaceAny = 0;  // 0: no limit
   double scale = std::min(1.0, std::max(o.faceScale, 20.0 / minFace));
   // In the region, the zone's depths bound the faces' sizes (width = k d,
@@ -143,22 +178,15 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& f
   const int pad = region ? minFace / 2 : 0;
   const cv::Rect faceRoi =
       cv::Rect(roi.x - pad, roi.y - pad, roi.width + 2 * pad, roi.height + 2 * pad) & image;
-  const int minSize = std::max(20, cvRound(minFace * scale));
+  // The left image in grey: the rectify stage's (the same conversion, done
+  // once per frame) where there is one, else converted window by window.
+  const bool haveGrey = frame.leftGrey.size() == colour.size() && frame.leftGrey.type() == CV_8UC1;
+  const cv::Mat grey = haveGrey ? frame.leftGrey : cv::Mat();
   std::vector<cv::Rect> boxes;  // image coordinates
-  // The cascade over `area` (image coordinates) for faces up to maxFace px wide (0: any).
+  // The cascade over `area` for faces from minFace up to maxFace px wide (0: any).
   auto search = [&](const cv::Rect& area, int maxFace) {
-    if (area.width < minFace || area.height < minFace) return;
-    cv::cvtColor(colour(area), grey_, cv::COLOR_BGR2GRAY);
-    if (scale != 1) cv::resize(grey_, grey_, cv::Size(), scale, scale, cv::INTER_AREA);
-    std::vector<cv::Rect> found;
     if (maxFaceAny > 0) maxFace = maxFace > 0 ? std::min(maxFace, maxFaceAny) : maxFaceAny;
-    const int maxSize = maxFace > 0 ? std::max(minSize, cvRound(maxFace * scale)) : 0;
-    cascade_.detectMultiScale(grey_, found, o.scaleFactor, o.minNeighbors, 0,
-                              cv::Size(minSize, minSize), cv::Size(maxSize, maxSize));
-    const double k = 1 / scale;
-    for (const cv::Rect& b : found)
-      boxes.emplace_back(cvRound(b.x * k) + area.x, cvRound(b.y * k) + area.y, cvRound(b.width * k),
-                         cvRound(b.height * k));
+    cascadeIn(o, colour, grey, area, minFace, maxFace, scale, boxes);
   };
   // The windows a guided full search looks in: around each skin blob large
   // enough to hold a face (a face is skin; in the region, in the zone).
@@ -202,8 +230,28 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& f
     ++sinceFullSearch_;
     for (const Followed& followed : followed_) {
       const cv::Rect& f = followed.box;
-      const int g = cvRound(o.followMarginFaces * f.width);
-      search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi, 2 * f.width);
+      if (o.followSizeRatio > 0) {
+        // Where its last step takes it, with a margin for a change of step,
+        // at about its own size.
+        const double margin = std::min(o.followMarginFaces * f.width,
+                                       o.followSlackFaces * f.width + cv::norm(followed.step));
+        const int g = cvRound(margin);
+        const cv::Rect window(f.x + cvRound(followed.step.x) - g,
+                              f.y + cvRound(followed.step.y) - g, f.width + 2 * g,
+                              f.height + 2 * g);
+        const int lo = std::max(smallestFace, cvFloor(f.width / o.followSizeRatio));
+        // The image scaled so the face is about followFacePx wide: the
+        // cascade steps its window by 1 px instead of 2 on pyramid levels
+        // over twice its 24 px, four times the windows for a near face.
+        const double followScale =
+            o.followFacePx > 0 ? std::min(scale, o.followFacePx / f.width) : scale;
+        cascadeIn(o, colour, grey, window & faceRoi, lo,
+                  std::max(lo, cvCeil(f.width * o.followSizeRatio)), followScale, boxes);
+      } else {
+        const int g = cvRound(o.followMarginFaces * f.width);
+        search(cv::Rect(f.x - g, f.y - g, f.width + 2 * g, f.height + 2 * g) & faceRoi,
+               2 * f.width);
+      }
     }
     dedupe();
     // followMissFrames 0: a followed face not found again makes this frame
@@ -259,16 +307,26 @@ FaceSearchResult FaceSearch::find(const DetectorOptions& o, const StereoFrame& f
   // Followed next frame: the faces found, and those not found again for at
   // most followMissFrames frames (the cascade misses a face now and then; a
   // miss then costs no full search).
+  // A face found again carries its step since (the motion its next window
+  // expects).
   std::vector<Followed> next;
-  for (const FaceDetection& f : result.faces)
-    next.push_back({f.box, 0});
+  auto centreOf = [](const cv::Rect& b) {
+    return cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height);
+  };
+  auto sameFace = [&](const FaceDetection& g, const Followed& f) {
+    return cv::norm(g.centre - centreOf(f.box)) <
+           std::max(g.width, static_cast<float>(f.box.width));
+  };
+  for (const FaceDetection& g : result.faces) {
+    auto before = std::find_if(followed_.begin(), followed_.end(),
+                               [&](const Followed& f) { return f.missed == 0 && sameFace(g, f); });
+    next.push_back(
+        {g.box, 0, before == followed_.end() ? cv::Point2f() : g.centre - centreOf(before->box)});
+  }
   for (const Followed& f : followed_) {
-    const cv::Point2f c(f.box.x + 0.5f * f.box.width, f.box.y + 0.5f * f.box.height);
-    const bool foundAgain =
-        std::any_of(result.faces.begin(), result.faces.end(), [&](const FaceDetection& g) {
-          return cv::norm(g.centre - c) < std::max(g.width, static_cast<float>(f.box.width));
-        });
-    if (!foundAgain && f.missed < o.followMissFrames) next.push_back({f.box, f.missed + 1});
+    const bool foundAgain = std::any_of(result.faces.begin(), result.faces.end(),
+                                        [&](const FaceDetection& g) { return sameFace(g, f); });
+    if (!foundAgain && f.missed < o.followMissFrames) next.push_back({f.box, f.missed + 1, f.step});
   }
   followed_ = std::move(next);
   std::sort(

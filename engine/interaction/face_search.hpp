@@ -42,15 +42,24 @@ class FaceSearch {
     bool valid() const { return minPx > 0 && maxPx >= minPx; }
   };
   struct Followed {
-    cv::Rect box;    // where the face was last found
-    int missed = 0;  // frames since
+    cv::Rect box;      // where the face was last found
+    int missed = 0;    // frames since
+    cv::Point2f step;  // its centre's motion between the last two frames that found it, px
   };
 
+  // The cascade over `area` (image coordinates) of the left image (`grey`,
+  // or `colour` converted where `grey` is empty) scaled by `scale`, for faces minPx..maxPx wide
+  // (full-resolution px; maxPx 0: any); what it finds is appended to
+  // `boxes`, in image coordinates.
+  void cascadeIn(const DetectorOptions& o, const cv::Mat& colour, const cv::Mat& grey,
+                 const cv::Rect& area, int minPx, int maxPx, double scale,
+                 std::vector<cv::Rect>& boxes);
   void learnWidthPerDisparity(const StereoFrame& frame, const std::vector<FaceDetection>& faces);
   SizeRange sizesFromDepth(const DetectorOptions& o, const StereoFrame& frame, const cv::Rect& roi);
 
   cv::CascadeClassifier cascade_;
-  cv::Mat grey_, labels_, stats_, centroids_;
+  cv::Mat grey_, scaled_, labels_, stats_, centroids_;
+  std::vector<cv::Rect> found_;  // scratch
   std::vector<Followed> followed_;
   int sinceFullSearch_ = 0;  // frames since the last full search
   int sinceExhaustive_ = 0;  // full searches since the last exhaustive one

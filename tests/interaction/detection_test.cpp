@@ -141,6 +141,61 @@ TEST(Detection, FacesSizedByDepthStillFound) {
   }
 }
 
+// Following sized and placed by the face: a face moving 12 px a frame
+// (frame 100 shifted) leaves a window of 0.1 face widths around where it
+// was, but not the one around where its last step takes it. After the
+// first step is known (one frame's miss brings a full search), following
+// finds it every frame without a full search, where the full search does.
+TEST(Detection, FollowingLooksWhereTheFacesStepTakesIt) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  DetectorOptions o;
+  o.fullSearchEvery = 1000;
+  o.followSlackFaces = 0.1;
+  // At followFacePx 36 (the default) the cascade misses this face in a
+  // follow window now and then, moving or not (a miss costs a full search,
+  // not the face): the window's placement is tested at faceScale.
+  o.followFacePx = 0;
+  ASSERT_GT(o.followSizeRatio, 0);
+  Detector following(o), full(DetectorOptions{});
+  const sim::SimFrame still = renderedFrame(100);
+  for (int k = 0; k < 6; ++k) {
+    sim::SimFrame frame = still;
+    frame.left = cv::Mat();  // not into still's pixels
+    frame.mask = cv::Mat();
+    const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 12 * k, 0, 1, 0);
+    cv::warpAffine(still.left, frame.left, shift, still.left.size(), cv::INTER_NEAREST,
+                   cv::BORDER_REPLICATE);
+    cv::warpAffine(still.mask, frame.mask, shift, still.mask.size(), cv::INTER_NEAREST);
+    const Detections a = following.detect(frame), b = full.detect(frame);
+    ASSERT_EQ(b.faces.size(), 1u) << "step " << k;
+    ASSERT_EQ(a.faces.size(), 1u) << "step " << k;
+    EXPECT_TRUE(near(a.faces[0].centre, b.faces[0].centre, 0.25 * b.faces[0].width))
+        << "step " << k << ": " << a.faces[0].box << " vs " << b.faces[0].box;
+    if (k >= 2) {
+      EXPECT_FALSE(a.fullFaceSearch) << "step " << k << ": the window missed the face";
+    }
+  }
+}
+
+// The rectify stage's grey image, where the frame has one, is the colour
+// image converted as the cascade would: the same faces either way.
+TEST(Detection, FacesFromTheFramesGreyImageAreTheSame) {
+  if (!texturesPresent())
+    GTEST_SKIP() << "opencv-data or python3-skimage missing (scripts/setup.sh)";
+  Detector withGrey(DetectorOptions{}), withoutGrey(DetectorOptions{});
+  for (int index = 100; index < 106; ++index) {
+    sim::SimFrame frame = renderedFrame(index);
+    const Detections b = withoutGrey.detect(frame);
+    cv::cvtColor(frame.left, frame.leftGrey, cv::COLOR_BGR2GRAY);
+    const Detections a = withGrey.detect(frame);
+    ASSERT_FALSE(b.faces.empty()) << index;
+    ASSERT_EQ(a.faces.size(), b.faces.size()) << index;
+    for (std::size_t i = 0; i < a.faces.size(); ++i)
+      EXPECT_EQ(a.faces[i].box, b.faces[i].box) << index;
+  }
+}
+
 // A skin disc on a textured background, rendered as a stereo pair: where the
 // disparity map is right the views agree on the disc; where it claims the
 // disc is nearer than it is (block matching's fattened silhouette), they do
@@ -296,6 +351,9 @@ TEST(Detection, BadInputIsAnError) {
       [](DetectorOptions& o) { o.scaleFactor = 1.0; },
       [](DetectorOptions& o) { o.fullSearchEvery = 0; },
       [](DetectorOptions& o) { o.exhaustiveSearchEvery = -1; },
+      [](DetectorOptions& o) { o.followSizeRatio = 0.5; },
+      [](DetectorOptions& o) { o.followSlackFaces = -1; },
+      [](DetectorOptions& o) { o.followFacePx = 20; },
       [](DetectorOptions& o) { o.acquisitionFaceScale = 2; },
       [](DetectorOptions& o) { o.faceZoneCover = 1.5; },
       [](DetectorOptions& o) { o.minSkinLumaOfFace = -0.1; },
