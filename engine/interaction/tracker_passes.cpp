@@ -133,9 +133,9 @@ bool faceOrNeck(cv::Point2f c, cv::Point2f head, double fw) {
          c.y - head.y <= 1.2 * fw;
 }
 
-std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<HandDetection>& hands,
-                                                          cv::Point2f head, double fw,
-                                                          const TrackerOptions& o, float faceLuma) {
+std::vector<const HandDetection*> plausibleHandCandidates(
+    const std::vector<HandDetection>& hands, cv::Point2f head, double fw, const TrackerOptions& o,
+    float faceLuma, std::vector<const HandDetection*>* pinnedOut) {
   std::vector<const HandDetection*> candidates;
   for (const HandDetection& c : hands) {
     // The face and neck themselves, where the detector missed the face this
@@ -154,9 +154,13 @@ std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<Hand
                         c.disparityPx >= o.pinnedDisparityFraction * o.maxDisparityPx;
     // Skin-coloured cloth is far darker than the face's skin under the same light.
     const bool bright = !(faceLuma > 0) || c.meanLuma >= o.minHandLumaOfFace * faceLuma;
-    if (inReach && handSized && bright && !pinned &&
-        c.stereoAgreement >= (small ? o.smallHandMinAgreement : o.minStereoAgreement))
-      candidates.push_back(&c);
+    if (inReach && handSized && bright &&
+        c.stereoAgreement >= (small ? o.smallHandMinAgreement : o.minStereoAgreement)) {
+      if (!pinned)
+        candidates.push_back(&c);
+      else if (pinnedOut)
+        pinnedOut->push_back(&c);
+    }
   }
   return candidates;
 }
@@ -167,7 +171,7 @@ HandFrame startHandFrame(const ConstantVelocityTrack& head, float faceWidth, con
   f.head = head.position();
   f.fw = std::max(1.0f, faceWidth);
   f.t = t;
-  f.candidates = plausibleHandCandidates(det.hands, f.head, f.fw, o, faceLuma);
+  f.candidates = plausibleHandCandidates(det.hands, f.head, f.fw, o, faceLuma, &f.pinned);
   f.taken.assign(f.candidates.size(), false);
   return f;
 }
@@ -196,6 +200,43 @@ void assignGated(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOpt
     const auto k = static_cast<std::size_t>(p.track);
     if (f.steps[k].updated || f.taken[p.candidate]) continue;
     takeCandidate(hands[k], f, p.track, p.candidate, /*restart=*/false, o);
+  }
+}
+
+void takePinnedNearHands(std::array<HandTrack, 2>& hands, HandFrame& f,
+                         const std::array<double, 2>& handDisparity, const TrackerOptions& o) {
+  // A hand brought towards the cameras is matched at the end of the range,
+  // like the wood behind a shoulder: a track whose hand was last measured
+  // that near may take a whole pinned candidate near it, one that is not
+  // cannot, so clutter pinned at the range's end still holds no track.
+  if (!(o.pinnedNearFraction > 0) || !(o.maxDisparityPx > 0)) return;
+  for (int k = 0; k < 2; ++k) {
+    HandTrack& hand = hands[static_cast<std::size_t>(k)];
+    const auto ks = static_cast<std::size_t>(k);
+    if (!hand.track || f.steps[ks].updated ||
+        !(handDisparity[ks] >= o.pinnedNearFraction * o.maxDisparityPx))
+      continue;
+    const HandDetection* best = nullptr;
+    double bestD = 0;
+    for (const HandDetection* c : f.pinned) {
+      if (std::find(f.candidates.begin(), f.candidates.end(), c) != f.candidates.end()) continue;
+      const bool solid = c->areaPx >= o.solidHandAreaFaces * f.fw * f.fw &&
+                         c->radiusPx >= o.solidHandRadiusFaces * f.fw;
+      const double fromTrack = cv::norm(c->centroid - hand.track->position());
+      const double fromSeen = cv::norm(c->centroid - hand.lastSeen);
+      const bool near =
+          (hand.track->inGate(c->centroid) && fromTrack <= o.maxHandStepFaceWidths * f.fw) ||
+          fromSeen <= o.reacquireFaceWidths * f.fw;
+      if (!solid || !near || !onHandSide(k, c->centroid, f.head, f.fw, o)) continue;
+      const double d = std::min(fromTrack, fromSeen);
+      if (!best || d < bestD) best = c, bestD = d;
+    }
+    if (!best) continue;
+    // It joins the frame's candidates, taken, so no later pass moves another track onto it.
+    f.candidates.push_back(best);
+    f.taken.push_back(false);
+    takeCandidate(hand, f, k, f.candidates.size() - 1,
+                  /*restart=*/!hand.track->inGate(best->centroid), o);
   }
 }
 

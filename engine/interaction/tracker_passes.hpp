@@ -60,7 +60,9 @@ struct HandFrame {
   double t = 0;                                  // the frame's time, s
   std::vector<const HandDetection*> candidates;  // the plausible hand candidates
   std::vector<bool> taken;                       // per candidate: a track holds it
-  std::array<HandStep, 2> steps;                 // per hand
+  // Refused only for their disparity pinned at the range's end (takePinnedNearHands).
+  std::vector<const HandDetection*> pinned;
+  std::array<HandStep, 2> steps;  // per hand
 };
 
 // ---- helpers ------------------------------------------------------------
@@ -131,18 +133,27 @@ ElectionState updateElection(GodfatherElection& election, SubjectTracks& s,
 bool faceOrNeck(cv::Point2f c, cv::Point2f head, double fw);
 // The candidates that may be hands: not the face or neck, within reach, of
 // a hand's area and radius, agreeing between the views, and, where the
-// face's skin luma is known, not much darker than it (minHandLumaOfFace).
-std::vector<const HandDetection*> plausibleHandCandidates(const std::vector<HandDetection>& hands,
-                                                          cv::Point2f head, double fw,
-                                                          const TrackerOptions& o,
-                                                          float faceLuma = 0);
-// This frame's hand context: the plausible candidates, none taken.
+// face's skin luma is known, not much darker than it (minHandLumaOfFace);
+// and not pinned at the range's end (pinnedDisparityFraction): those that
+// pass every other test go to `pinnedOut`, where given.
+std::vector<const HandDetection*> plausibleHandCandidates(
+    const std::vector<HandDetection>& hands, cv::Point2f head, double fw, const TrackerOptions& o,
+    float faceLuma = 0, std::vector<const HandDetection*>* pinnedOut = nullptr);
+// This frame's hand context: the plausible candidates, none taken, and the pinned ones.
 HandFrame startHandFrame(const ConstantVelocityTrack& head, float faceWidth, const Detections& det,
                          double t, const TrackerOptions& o, float faceLuma = 0);
 
 // Gated nearest-first assignment of the candidates to the existing tracks:
 // one candidate per track and one track per candidate.
 void assignGated(std::array<HandTrack, 2>& hands, HandFrame& f, const TrackerOptions& o);
+
+// A missed track whose hand was last measured near (its disparity
+// `handDisparity[k]`, px, at least pinnedNearFraction of maxDisparityPx)
+// takes the nearest solid pinned candidate on its side within its gate and
+// step limit or within reacquireFaceWidths of where it was last seen; the
+// candidate joins the frame's candidates, taken.
+void takePinnedNearHands(std::array<HandTrack, 2>& hands, HandFrame& f,
+                         const std::array<double, 2>& handDisparity, const TrackerOptions& o);
 
 // Whether stereo is blind at a missed hand's prediction: the front end
 // found under blindValidFraction valid disparities there (`validFraction`),

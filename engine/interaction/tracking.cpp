@@ -103,6 +103,10 @@ std::span<const NumberOption<TrackerOptions>> trackerOptions() {
        "a hand candidate whose disparity is at least this fraction of the largest searched is "
        "refused (0: no limit)",
        &O::pinnedDisparityFraction},
+      {"pinnedNearFraction", "--pinned-near-hand", "", 0, 1,
+       "... but a hand last measured at this fraction of the largest disparity or more may take "
+       "a solid pinned candidate near it (0: never)",
+       &O::pinnedNearFraction},
       {"minHandLumaOfFace", "--min-hand-luma", "", 0, 4,
        "a hand candidate's mean grey level must be at least this fraction of the face's (0: off)",
        &O::minHandLumaOfFace},
@@ -251,6 +255,7 @@ TrackingState BodyTracker::update(const StereoFrame& frame, const Detections& de
   if (s.head) {
     detail::HandFrame f = detail::startHandFrame(*s.head, s.faceWidth, det, t, o, s.faceLuma);
     detail::assignGated(s.hands, f, o);
+    detail::takePinnedNearHands(s.hands, f, {m.handDisparity[0], m.handDisparity[1]}, o);
     // Where stereo is blind, a hand missed by the detector is followed by
     // its look, before the steps below move it elsewhere.
     detail::followBlindWhereMissed(s.hands, f, [&](int k) {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "hand_candidate.hpp"
@@ -311,6 +312,72 @@ TEST(TrackerPasses, CandidatesPinnedAtTheRangesEndAreNotHands) {
   o.pinnedDisparityFraction = 0.94;
   o.maxDisparityPx = 0;  // the range unknown
   EXPECT_TRUE(kept(93));
+}
+
+TEST(TrackerPasses, OnlyAHandLastMeasuredNearTakesAPinnedWholeHand) {
+  TrackerOptions o;
+  o.maxDisparityPx = 95;
+  const auto pinnedAt = [](cv::Point2f at, float radius) {
+    HandDetection c = cand(at, radius);
+    c.disparityPx = 92;  // pinned: 0.94 of 95 = 89.3
+    return c;
+  };
+  // A whole hand (radius 12 of a 60 px face: solid) 20 px from the right
+  // hand's track, and a speck beside it; nothing else.
+  const std::vector<HandDetection> dets = {pinnedAt({250, 380}, 12), pinnedAt({245, 385}, 5)};
+  const auto run = [&](double disparity, const TrackerOptions& opts, cv::Point2f from) {
+    std::array<HandTrack, 2> hands = {HandTrack{}, handAt(from, 1.0)};
+    HandFrame f;
+    f.head = kHead;
+    f.fw = kFw;
+    f.t = 1.0;
+    f.candidates = plausibleHandCandidates(dets, kHead, kFw, opts, 0, &f.pinned);
+    f.taken.assign(f.candidates.size(), false);
+    EXPECT_TRUE(f.candidates.empty());  // both refused as pinned
+    takePinnedNearHands(hands, f, {0, disparity}, opts);
+    return std::make_pair(f, hands);
+  };
+  // Last measured at 85 px (0.89 of 95): it takes the whole hand, not the speck.
+  {
+    auto [f, hands] = run(85, o, {230, 380});
+    ASSERT_EQ(f.candidates.size(), 1u);
+    EXPECT_EQ(f.candidates[0], &dets[0]);
+    EXPECT_EQ(f.taken, std::vector<bool>{true});
+    EXPECT_EQ(f.steps[1].held, std::optional<std::size_t>(0));
+    EXPECT_EQ(f.steps[1].detectedBy, &dets[0]);
+    EXPECT_TRUE(same(hands[1].lastSeen, {250, 380}));
+  }
+  // Last measured at 75 px (a hand at the body's depth): the pinned blob is
+  // clutter to it (the wood behind a shoulder), and stays refused.
+  {
+    auto [f, hands] = run(75, o, {230, 380});
+    EXPECT_TRUE(f.candidates.empty());
+    EXPECT_FALSE(f.steps[1].updated);
+  }
+  // Unknown disparity, or the rule off: refused.
+  EXPECT_FALSE(run(0, o, {230, 380}).first.steps[1].updated);
+  TrackerOptions off = o;
+  off.pinnedNearFraction = 0;
+  EXPECT_FALSE(run(85, off, {230, 380}).first.steps[1].updated);
+  // Too far from the track and from where the hand was last seen (3 face widths).
+  EXPECT_FALSE(run(85, o, {70, 380}).first.steps[1].updated);
+  // The speck alone is not taken even by a near hand.
+  {
+    std::array<HandTrack, 2> hands = {HandTrack{}, handAt({240, 385}, 1.0)};
+    HandFrame f = handFrame({}, 1.0);
+    f.pinned = {&dets[1]};
+    takePinnedNearHands(hands, f, {0, 90}, o);
+    EXPECT_FALSE(f.steps[1].updated);
+  }
+  // Not across the head's vertical: the left hand's track is on the image's
+  // right, and the whole hand is 70 px left of the head.
+  {
+    std::array<HandTrack, 2> hands = {handAt({262, 380}, 1.0), HandTrack{}};
+    HandFrame f = handFrame({}, 1.0);
+    f.pinned = {&dets[0]};
+    takePinnedNearHands(hands, f, {90, 0}, o);
+    EXPECT_FALSE(f.steps[0].updated);
+  }
 }
 
 TEST(TrackerPasses, GatedAssignmentIsNearestFirstOneCandidatePerTrack) {

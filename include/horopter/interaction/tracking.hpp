@@ -124,6 +124,12 @@ struct HOROPTER_API TrackerOptions {
   // hands'); a hand that near is blind to the front end anyway and
   // followed by its look.
   double pinnedDisparityFraction = 0.94;
+  // ... but a hand track whose hand was last measured at this fraction of
+  // maxDisparityPx or more (brought towards the cameras) may take a solid
+  // pinned candidate near it (0: never). On tuning seeds 10352-10391, 53 of
+  // 87 right-hand "elsewhere" frames had the whole hand at 89-95 px,
+  // refused as pinned; the wood stays refused to tracks not measured near.
+  double pinnedNearFraction = 0.85;
   // A hand's track takes no candidate further than this many face widths
   // across the head's vertical to the other hand's side (a circle or a
   // wave crosses the midline by about half a face width).
