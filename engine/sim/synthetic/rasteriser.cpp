@@ -139,6 +139,11 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
     cv::parallel_for_(
         cv::Range(0, camera.height),
         [&](const cv::Range& rows) {
+          // One batch's rays, hits and columns (rayTestBatch), constructed
+          // once: not per segment.
+          Ray rays[kRayBatch];
+          Hit hits[kRayBatch];
+          int xs[kRayBatch];
           for (std::size_t i = 0; i < primitives.size(); ++i) {
             const Primitive& p = primitives[i];
             // One pixel loop per shape, so that its ray test is inlined.
@@ -154,9 +159,6 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                 // In batches: the ray tests of a batch, then the shading of its
                 // hits (rayTestBatch). The result is the same as one loop: a
                 // primitive touches each pixel once.
-                Ray rays[kRayBatch];
-                Hit hits[kRayBatch];
-                int xs[kRayBatch];
                 for (int xb = x0; xb < x1; xb += kRayBatch) {
                   const int xe = std::min(x1, xb + kRayBatch);
                   const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
@@ -219,6 +221,9 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
       [&](const cv::Range& rows) {
         std::vector<Hit> rowHits(static_cast<std::size_t>(camera.width));
         std::vector<int> winner(static_cast<std::size_t>(camera.width), -1);
+        Ray rays[kRayBatch];  // one batch's (rayTestBatch), constructed once
+        Hit hits[kRayBatch];
+        int xs[kRayBatch];
         for (int y = rows.start; y < rows.end; ++y) {
           auto* colour = layer.colour.ptr<cv::Vec3b>(y);
           auto* depth = layer.depth.ptr<double>(y);
@@ -233,9 +238,6 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             // Pixels a <= x < b, in batches: the ray tests, then the record
             // of the hits (rayTestBatch).
             auto testSpan = [&](int a, int b, auto test) {
-              Ray rays[kRayBatch];
-              Hit hits[kRayBatch];
-              int xs[kRayBatch];
               for (int xb = a; xb < b; xb += kRayBatch) {
                 const int xe = std::min(b, xb + kRayBatch);
                 const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
