@@ -37,10 +37,28 @@ inline int wrapIndex(int i, int n) {
   return r < 0 ? r + n : r;
 }
 
+#if defined(__SSE2__)
+// The three floats of a texel in lanes 0-2 (lane 3: 0), reading no further.
+inline __m128 loadTexel(const float* p) {
+  const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+  return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
+}
+
+inline cv::Vec3f toVec3f(__m128 v) {
+  alignas(16) float t[4];
+  _mm_store_ps(t, v);
+  return {t[0], t[1], t[2]};
+}
+#else
+inline cv::Vec3f toVec3f(const cv::Vec3f& v) {
+  return v;
+}
+#endif
+
 }  // namespace texture_detail
 
 template <bool Wrap>
-inline cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
+inline Texture::Texel Texture::sampleLevel(int level, double u, double v) const {
   const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
   // 2^-level, exact (std::ldexp is a library call per sample).
   static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
@@ -79,6 +97,14 @@ inline cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
   const float* c = img.ptr<float>(y1) + 3 * x0;
   const float* d = img.ptr<float>(y1) + 3 * x1;
   const float gx = 1 - fx, gy = 1 - fy;
+#if defined(__SSE2__)
+  // The three channels at once: the same float operations, lane by lane.
+  using texture_detail::loadTexel;
+  const __m128 vgx = _mm_set1_ps(gx), vfx = _mm_set1_ps(fx);
+  const __m128 top = _mm_add_ps(_mm_mul_ps(loadTexel(a), vgx), _mm_mul_ps(loadTexel(b), vfx));
+  const __m128 bottom = _mm_add_ps(_mm_mul_ps(loadTexel(c), vgx), _mm_mul_ps(loadTexel(d), vfx));
+  return _mm_add_ps(_mm_mul_ps(top, _mm_set1_ps(gy)), _mm_mul_ps(bottom, _mm_set1_ps(fy)));
+#else
   cv::Vec3f out;
   for (int k = 0; k < 3; ++k) {
     const float top = a[k] * gx + b[k] * fx;
@@ -86,19 +112,25 @@ inline cv::Vec3f Texture::sampleLevel(int level, double u, double v) const {
     out[k] = top * gy + bottom * fy;
   }
   return out;
+#endif
 }
 
 template <bool Wrap>
 inline cv::Vec3f Texture::sample(double u, double v, double footprint) const {
   const int last = static_cast<int>(levels_.size()) - 1;
   const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
-  if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
-  if (lod >= last) return sampleLevel<Wrap>(last, u, v);
+  using texture_detail::toVec3f;
+  if (lod <= 0) return toVec3f(sampleLevel<Wrap>(0, u, v));
+  if (lod >= last) return toVec3f(sampleLevel<Wrap>(last, u, v));
   const int l0 = static_cast<int>(lod);
   const float f = static_cast<float>(lod - l0);
-  const cv::Vec3f a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);
+  const Texel a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);
   const float g = 1 - f;
+#if defined(__SSE2__)
+  return toVec3f(_mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(g)), _mm_mul_ps(b, _mm_set1_ps(f))));
+#else
   return cv::Vec3f(a[0] * g + b[0] * f, a[1] * g + b[1] * f, a[2] * g + b[2] * f);
+#endif
 }
 
 inline cv::Vec3f Texture::sampleWrap(double u, double v, double footprint) const {

@@ -6,6 +6,10 @@
 
 #include <opencv2/core.hpp>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <string>
 #include <vector>
 
@@ -30,8 +34,13 @@ class Texture {
   cv::Vec3f sampleClamp(double u, double v, double footprint) const;
 
  private:
+#if defined(__SSE2__)
+  using Texel = __m128;  // B, G, R, 0: the three channels in one register
+#else
+  using Texel = cv::Vec3f;
+#endif
   template <bool Wrap>
-  cv::Vec3f sampleLevel(int level, double u, double v) const;
+  Texel sampleLevel(int level, double u, double v) const;
   template <bool Wrap>
   cv::Vec3f sample(double u, double v, double footprint) const;
   std::vector<cv::Mat> levels_;  // CV_32FC3, each half the previous
