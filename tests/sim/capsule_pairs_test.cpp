@@ -46,11 +46,10 @@ TEST(SyntheticCapsulePairs, SameHitsAsTheScalarTest) {
       std::vector<double> depth(static_cast<std::size_t>(camera.width), 1e30);
       for (int x = 40; x < 80; ++x)
         depth[static_cast<std::size_t>(x)] = 1.1;
-      Ray rays[160];
       Hit hits[160];
       int xs[160];
-      const int n = capsuleRowHits(p, camera, columnX.data(), rowY, 0, camera.width, depth.data(),
-                                   rays, hits, xs);
+      const int n =
+          capsuleRowHits(p, camera, columnX.data(), rowY, 0, camera.width, depth.data(), hits, xs);
       int k = 0;
       for (int x = 0; x < camera.width; ++x) {
         Ray ray;

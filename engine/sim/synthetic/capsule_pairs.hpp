@@ -18,13 +18,12 @@ namespace horopter::synth::detail {
 
 // Tests pixels xb <= x < xe of the row whose rig direction y is `rowY`
 // (direction x from `columnX`); for each pixel hit nearer than depth[x],
-// appends its ray, hit and x. Returns how many were appended.
+// appends its hit and x. Returns how many were appended.
 inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double* columnX,
-                          double rowY, int xb, int xe, const double* depth, Ray* rays, Hit* hits,
-                          int* xs) {
+                          double rowY, int xb, int xe, const double* depth, Hit* hits, int* xs) {
   int n = 0;
   auto scalar = [&](int x) {
-    Ray& ray = rays[n];
+    Ray ray;
     ray.o = camera.centre;
     ray.d = camera.rigToWorld.apply(Vec3{columnX[x], rowY, 1.0});
     if (intersectCapsule(p, ray, depth[x], hits[n])) xs[n++] = x;
@@ -116,7 +115,7 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
     const __m128d inRange = _mm_and_pd(_mm_cmpnle_pd(t, set(kTMin)), _mm_cmpnge_pd(t, tMax));
     const int hitMask = _mm_movemask_pd(_mm_and_pd(found, inRange));
     if (hitMask == 0) continue;  // behind what is there, too near, or no cap
-    alignas(16) double out[9][2];
+    alignas(16) double out[6][2];
     {
       const __m128d qx = _mm_add_pd(set(camera.centre.x), _mm_mul_pd(t, dx));
       const __m128d qy = _mm_add_pd(set(camera.centre.y), _mm_mul_pd(t, dy));
@@ -151,9 +150,6 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
       _mm_store_pd(out[3], nz);
       _mm_store_pd(out[4], u);
       _mm_store_pd(out[5], v);
-      _mm_store_pd(out[6], dx);
-      _mm_store_pd(out[7], dy);
-      _mm_store_pd(out[8], dz);
     }
     for (int lane = 0; lane < 2; ++lane) {
       if (!(hitMask & (1 << lane))) continue;
@@ -163,8 +159,6 @@ inline int capsuleRowHits(const Primitive& p, const Camera& camera, const double
       hit.normal = {out[1][lane], out[2][lane], out[3][lane]};
       hit.u = out[4][lane];
       hit.v = out[5][lane];
-      rays[n].o = camera.centre;
-      rays[n].d = {out[6][lane], out[7][lane], out[8][lane]};
       xs[n++] = x + lane;
     }
   }

@@ -80,20 +80,23 @@ namespace {
 constexpr int kRayBatch = 32;
 
 // The ray tests of pixels xb <= x < xe of a row (at most kRayBatch): the
-// rays and hits of the pixels where `p` is nearer than depth[x], and their
-// columns; returns how many. Each pixel is one long chain of dependent
+// hits of the pixels where `p` is nearer than depth[x], and their columns;
+// returns how many. Each pixel is one long chain of dependent
 // operations, so callers test a batch, then shade or record its hits: two
 // short loops let the processor overlap neighbouring pixels.
 template <typename Test>
 int rayTestBatch(const Primitive& p, const Camera& camera, const double* columnX, double rowY,
-                 int xb, int xe, const double* depth, Ray* rays, Hit* hits, int* xs, Test test) {
+                 int xb, int xe, const double* depth, Hit* hits, int* xs, Test test) {
   if (p.shape == Primitive::Shape::Capsule)
-    return detail::capsuleRowHits(p, camera, columnX, rowY, xb, xe, depth, rays, hits, xs);
+    return detail::capsuleRowHits(p, camera, columnX, rowY, xb, xe, depth, hits, xs);
   int n = 0;
+  Ray ray;
+  ray.o = camera.centre;
   for (int x = xb; x < xe; ++x) {
-    Ray& ray = rays[n];
-    ray.o = camera.centre;
     ray.d = camera.rigToWorld.apply(Vec3{columnX[x], rowY, 1.0});
+    // The hits array outlives a primitive: the one field a test may leave
+    // as it was (only the Face mapping reads it) starts as in a new Hit.
+    hits[n].back = false;
     if (!test(p, ray, depth[x], hits[n])) continue;
     xs[n++] = x;
   }
@@ -139,9 +142,8 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
     cv::parallel_for_(
         cv::Range(0, camera.height),
         [&](const cv::Range& rows) {
-          // One batch's rays, hits and columns (rayTestBatch), constructed
-          // once: not per segment.
-          Ray rays[kRayBatch];
+          // One batch's hits and columns (rayTestBatch), constructed once:
+          // not per segment.
           Hit hits[kRayBatch];
           int xs[kRayBatch];
           for (std::size_t i = 0; i < primitives.size(); ++i) {
@@ -161,8 +163,8 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                 // primitive touches each pixel once.
                 for (int xb = x0; xb < x1; xb += kRayBatch) {
                   const int xe = std::min(x1, xb + kRayBatch);
-                  const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
-                                             hits, xs, test);
+                  const int n =
+                      rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, hits, xs, test);
                   for (int k = 0; k < n; ++k) {
                     const cv::Vec3f c =
                         shade(p, hits[k], *faceTextures[i][hits[k].face], pixelMetres);
@@ -221,8 +223,7 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
       [&](const cv::Range& rows) {
         std::vector<Hit> rowHits(static_cast<std::size_t>(camera.width));
         std::vector<int> winner(static_cast<std::size_t>(camera.width), -1);
-        Ray rays[kRayBatch];  // one batch's (rayTestBatch), constructed once
-        Hit hits[kRayBatch];
+        Hit hits[kRayBatch];  // one batch's (rayTestBatch), constructed once
         int xs[kRayBatch];
         for (int y = rows.start; y < rows.end; ++y) {
           auto* colour = layer.colour.ptr<cv::Vec3b>(y);
@@ -240,8 +241,8 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             auto testSpan = [&](int a, int b, auto test) {
               for (int xb = a; xb < b; xb += kRayBatch) {
                 const int xe = std::min(b, xb + kRayBatch);
-                const int n = rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, rays,
-                                           hits, xs, test);
+                const int n =
+                    rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, hits, xs, test);
                 for (int k = 0; k < n; ++k) {
                   const int x = xs[k];
                   depth[x] = hits[k].t;
