@@ -166,12 +166,9 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                   const int n =
                       rayTestBatch(p, camera, columnX.data(), rowY, xb, xe, depth, hits, xs, test);
                   for (int k = 0; k < n; ++k) {
-                    const cv::Vec3f c =
-                        shade(p, hits[k], *faceTextures[i][hits[k].face], pixelMetres);
                     depth[xs[k]] = hits[k].t;
                     colour[xs[k]] =
-                        cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                                  cv::saturate_cast<uchar>(c[2]));
+                        shadePixel(p, hits[k], *faceTextures[i][hits[k].face], pixelMetres);
                   }
                 }
               };
@@ -284,10 +281,7 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
             winner[static_cast<std::size_t>(x)] = -1;
             const std::size_t wi = static_cast<std::size_t>(w);
             const Hit& hit = rowHits[static_cast<std::size_t>(x)];
-            const cv::Vec3f c =
-                shade(primitives[wi], hit, *faceTextures[wi][hit.face], pixelMetres);
-            colour[x] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
-                                  cv::saturate_cast<uchar>(c[2]));
+            colour[x] = shadePixel(primitives[wi], hit, *faceTextures[wi][hit.face], pixelMetres);
           }
         }
       },

@@ -58,7 +58,8 @@ inline cv::Vec3f toVec3f(const cv::Vec3f& v) {
 }  // namespace texture_detail
 
 template <bool Wrap>
-inline Texture::Texel Texture::sampleLevel(int level, double u, double v) const {
+[[gnu::always_inline]] inline Texture::Texel Texture::sampleLevel(int level, double u,
+                                                                  double v) const {
   const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
   // 2^-level, exact (std::ldexp is a library call per sample).
   static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
@@ -116,29 +117,37 @@ inline Texture::Texel Texture::sampleLevel(int level, double u, double v) const 
 }
 
 template <bool Wrap>
-inline cv::Vec3f Texture::sample(double u, double v, double footprint) const {
+[[gnu::always_inline]] inline Texture::Texel Texture::sample(double u, double v,
+                                                             double footprint) const {
   const int last = static_cast<int>(levels_.size()) - 1;
   const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
-  using texture_detail::toVec3f;
-  if (lod <= 0) return toVec3f(sampleLevel<Wrap>(0, u, v));
-  if (lod >= last) return toVec3f(sampleLevel<Wrap>(last, u, v));
+  if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
+  if (lod >= last) return sampleLevel<Wrap>(last, u, v);
   const int l0 = static_cast<int>(lod);
   const float f = static_cast<float>(lod - l0);
   const Texel a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);
   const float g = 1 - f;
 #if defined(__SSE2__)
-  return toVec3f(_mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(g)), _mm_mul_ps(b, _mm_set1_ps(f))));
+  return _mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(g)), _mm_mul_ps(b, _mm_set1_ps(f)));
 #else
   return cv::Vec3f(a[0] * g + b[0] * f, a[1] * g + b[1] * f, a[2] * g + b[2] * f);
 #endif
 }
 
-inline cv::Vec3f Texture::sampleWrap(double u, double v, double footprint) const {
+inline Texture::Texel Texture::sampleWrapTexel(double u, double v, double footprint) const {
   return sample<true>(u, v, footprint);
 }
 
-inline cv::Vec3f Texture::sampleClamp(double u, double v, double footprint) const {
+inline Texture::Texel Texture::sampleClampTexel(double u, double v, double footprint) const {
   return sample<false>(u, v, footprint);
+}
+
+inline cv::Vec3f Texture::sampleWrap(double u, double v, double footprint) const {
+  return texture_detail::toVec3f(sample<true>(u, v, footprint));
+}
+
+inline cv::Vec3f Texture::sampleClamp(double u, double v, double footprint) const {
+  return texture_detail::toVec3f(sample<false>(u, v, footprint));
 }
 
 }  // namespace horopter::synth

@@ -27,22 +27,25 @@ class Texture {
 
   int width() const { return levels_.empty() ? 0 : levels_[0].cols; }
   int height() const { return levels_.empty() ? 0 : levels_[0].rows; }
-  // (u, v) in texels of the full-size image, the texture repeating;
-  // `footprint`: texels covered by one pixel (chooses the mipmap level).
-  cv::Vec3f sampleWrap(double u, double v, double footprint) const;
-  // As sampleWrap, but outside the image the border texel repeats.
-  cv::Vec3f sampleClamp(double u, double v, double footprint) const;
-
- private:
 #if defined(__SSE2__)
   using Texel = __m128;  // B, G, R, 0: the three channels in one register
 #else
   using Texel = cv::Vec3f;
 #endif
+  // (u, v) in texels of the full-size image, the texture repeating;
+  // `footprint`: texels covered by one pixel (chooses the mipmap level).
+  cv::Vec3f sampleWrap(double u, double v, double footprint) const;
+  // As sampleWrap, but outside the image the border texel repeats.
+  cv::Vec3f sampleClamp(double u, double v, double footprint) const;
+  // The same colours as a Texel (for the rasteriser's shading).
+  Texel sampleWrapTexel(double u, double v, double footprint) const;
+  Texel sampleClampTexel(double u, double v, double footprint) const;
+
+ private:
   template <bool Wrap>
   Texel sampleLevel(int level, double u, double v) const;
   template <bool Wrap>
-  cv::Vec3f sample(double u, double v, double footprint) const;
+  Texel sample(double u, double v, double footprint) const;
   std::vector<cv::Mat> levels_;  // CV_32FC3, each half the previous
 };
 
