@@ -245,8 +245,10 @@ cv::Rect render(const Camera& camera, const std::vector<Primitive>& unprepared, 
                   depth[x] = hits[k].t;
                   rowHits[static_cast<std::size_t>(x)] = hits[k];
                   winner[static_cast<std::size_t>(x)] = static_cast<int>(i);
-                  lo = std::min(lo, x);
-                  hi = std::max(hi, x + 1);
+                }
+                if (n > 0) {  // xs increases
+                  lo = std::min(lo, xs[0]);
+                  hi = std::max(hi, xs[n - 1] + 1);
                 }
               }
             };
