@@ -60,7 +60,7 @@ inline cv::Vec3f toVec3f(const cv::Vec3f& v) {
 template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sampleLevel(int level, double u,
                                                                   double v) const {
-  const cv::Mat& img = levels_[static_cast<std::size_t>(level)];
+  const LevelView& img = views_[static_cast<std::size_t>(level)];
   // 2^-level, exact (std::ldexp is a library call per sample).
   static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
                                        0.0625,     0.03125,     0.015625,     0.0078125,
@@ -69,7 +69,7 @@ template <bool Wrap>
   // Texel centres sit at integer coordinates of each level.
   u = u * scale - 0.5;
   v = v * scale - 0.5;
-  const int w = img.cols, h = img.rows;
+  const int w = img.w, h = img.h;
   int x0, y0, x1, y1;
   float fx, fy;
   if constexpr (Wrap) {
@@ -93,10 +93,12 @@ template <bool Wrap>
   }
   // Bilinear, channel by channel in plain floats (the same operations as
   // cv::Vec3f's, which the compiler did not keep in registers).
-  const float* a = img.ptr<float>(y0) + 3 * x0;
-  const float* b = img.ptr<float>(y0) + 3 * x1;
-  const float* c = img.ptr<float>(y1) + 3 * x0;
-  const float* d = img.ptr<float>(y1) + 3 * x1;
+  const float* row0 = img.data + static_cast<std::size_t>(y0) * img.rowFloats;
+  const float* row1 = img.data + static_cast<std::size_t>(y1) * img.rowFloats;
+  const float* a = row0 + 3 * x0;
+  const float* b = row0 + 3 * x1;
+  const float* c = row1 + 3 * x0;
+  const float* d = row1 + 3 * x1;
   const float gx = 1 - fx, gy = 1 - fy;
 #if defined(__SSE2__)
   // The three channels at once: the same float operations, lane by lane.
@@ -119,7 +121,7 @@ template <bool Wrap>
 template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sample(double u, double v,
                                                              double footprint) const {
-  const int last = static_cast<int>(levels_.size()) - 1;
+  const int last = static_cast<int>(views_.size()) - 1;
   const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
   if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
   if (lod >= last) return sampleLevel<Wrap>(last, u, v);

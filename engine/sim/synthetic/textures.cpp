@@ -27,6 +27,8 @@ Texture::Texture(const cv::Mat& bgr8) {
     levels_.push_back(down);
     level = down;
   }
+  for (const cv::Mat& l : levels_)
+    views_.push_back({l.ptr<float>(0), l.step1(), l.cols, l.rows});
 }
 
 namespace {

@@ -47,6 +47,14 @@ class Texture {
   template <bool Wrap>
   Texel sample(double u, double v, double footprint) const;
   std::vector<cv::Mat> levels_;  // CV_32FC3, each half the previous
+  // Each level's texels as sampleLevel reads them (no cv::Mat lookups per
+  // sample); they point into levels_.
+  struct LevelView {
+    const float* data = nullptr;
+    std::size_t rowFloats = 0;  // from a row to the next
+    int w = 0, h = 0;
+  };
+  std::vector<LevelView> views_;
 };
 
 enum class TextureId {
