@@ -32,7 +32,6 @@ inline double fastLog2(double v) {
 }
 
 inline int wrapIndex(int i, int n) {
-  if ((n & (n - 1)) == 0) return i & (n - 1);  // power of two (two's complement)
   const int r = i % n;
   return r < 0 ? r + n : r;
 }
@@ -61,14 +60,9 @@ template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sampleLevel(int level, double u,
                                                                   double v) const {
   const LevelView& img = views_[static_cast<std::size_t>(level)];
-  // 2^-level, exact (std::ldexp is a library call per sample).
-  static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
-                                       0.0625,     0.03125,     0.015625,     0.0078125,
-                                       0.00390625, 0.001953125, 0.0009765625, 0.00048828125};
-  const double scale = level < 12 ? kScales[level] : std::ldexp(1.0, -level);
   // Texel centres sit at integer coordinates of each level.
-  u = u * scale - 0.5;
-  v = v * scale - 0.5;
+  u = u * img.scale - 0.5;
+  v = v * img.scale - 0.5;
   const int w = img.w, h = img.h;
   int x0, y0, x1, y1;
   float fx, fy;
@@ -77,10 +71,18 @@ template <bool Wrap>
     const int iu = texture_detail::fastFloor(u), iv = texture_detail::fastFloor(v);
     fx = static_cast<float>(u - iu);
     fy = static_cast<float>(v - iv);
-    x0 = texture_detail::wrapIndex(iu, w);
-    y0 = texture_detail::wrapIndex(iv, h);
-    x1 = x0 + 1 == w ? 0 : x0 + 1;
-    y1 = y0 + 1 == h ? 0 : y0 + 1;
+    if (img.wrapByMask) {
+      // Power-of-two sides (two's complement): the neighbour wraps by the mask too.
+      x0 = iu & img.wMask;
+      y0 = iv & img.hMask;
+      x1 = (iu + 1) & img.wMask;
+      y1 = (iv + 1) & img.hMask;
+    } else {
+      x0 = texture_detail::wrapIndex(iu, w);
+      y0 = texture_detail::wrapIndex(iv, h);
+      x1 = x0 + 1 == w ? 0 : x0 + 1;
+      y1 = y0 + 1 == h ? 0 : y0 + 1;
+    }
   } else {
     u = std::clamp(u, 0.0, w - 1.0);
     v = std::clamp(v, 0.0, h - 1.0);
