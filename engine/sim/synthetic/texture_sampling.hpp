@@ -123,10 +123,9 @@ template <bool Wrap>
 template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sample(double u, double v,
                                                              double footprint) const {
-  const int last = static_cast<int>(views_.size()) - 1;
   const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
   if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
-  if (lod >= last) return sampleLevel<Wrap>(last, u, v);
+  if (lod >= lastLevelLod_) return sampleLevel<Wrap>(lastLevel_, u, v);
   const int l0 = static_cast<int>(lod);
   const float f = static_cast<float>(lod - l0);
   const Texel a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);

@@ -37,6 +37,8 @@ Texture::Texture(const cv::Mat& bgr8) {
     view.hMask = l.rows - 1;
     views_.push_back(view);
   }
+  lastLevel_ = static_cast<int>(views_.size()) - 1;
+  lastLevelLod_ = lastLevel_;
 }
 
 namespace {

@@ -60,6 +60,8 @@ class Texture {
     int wMask = 0, hMask = 0;  // w - 1, h - 1 when wrapByMask
   };
   std::vector<LevelView> views_;
+  int lastLevel_ = -1;        // views_.size() - 1, not derived per sample
+  double lastLevelLod_ = -1;  // the same, as sample compares it
 };
 
 enum class TextureId {
