@@ -75,8 +75,8 @@ template <bool Wrap>
       // Power-of-two sides (two's complement): the neighbour wraps by the mask too.
       x0 = iu & img.wMask;
       y0 = iv & img.hMask;
-      x1 = (iu + 1) & img.wMask;
-      y1 = (iv + 1) & img.hMask;
+      x1 = static_cast<int>((static_cast<unsigned>(iu) + 1) & static_cast<unsigned>(img.wMask));
+      y1 = static_cast<int>((static_cast<unsigned>(iv) + 1) & static_cast<unsigned>(img.hMask));
     } else {
       x0 = texture_detail::wrapIndex(iu, w);
       y0 = texture_detail::wrapIndex(iv, h);
@@ -95,12 +95,16 @@ template <bool Wrap>
   }
   // Bilinear, channel by channel in plain floats (the same operations as
   // cv::Vec3f's, which the compiler did not keep in registers).
-  const float* row0 = img.data + static_cast<std::size_t>(y0) * img.rowFloats;
-  const float* row1 = img.data + static_cast<std::size_t>(y1) * img.rowFloats;
-  const float* a = row0 + 3 * x0;
-  const float* b = row0 + 3 * x1;
-  const float* c = row1 + 3 * x0;
-  const float* d = row1 + 3 * x1;
+  // The indices are never negative: through unsigned, the offsets need no
+  // sign extension.
+  const auto offset = [](int i) { return static_cast<std::size_t>(static_cast<unsigned>(i)); };
+  const float* row0 = img.data + offset(y0) * img.rowFloats;
+  const float* row1 = img.data + offset(y1) * img.rowFloats;
+  const std::size_t ox0 = 3 * offset(x0), ox1 = 3 * offset(x1);
+  const float* a = row0 + ox0;
+  const float* b = row0 + ox1;
+  const float* c = row1 + ox0;
+  const float* d = row1 + ox1;
   const float gx = 1 - fx, gy = 1 - fy;
 #if defined(__SSE2__)
   // The three channels at once: the same float operations, lane by lane.
