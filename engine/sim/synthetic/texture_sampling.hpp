@@ -31,6 +31,29 @@ inline double fastLog2(double v) {
   return e + (m - 1);
 }
 
+// floor(u), floor(v) and the float fractions u - floor(u), v - floor(v):
+// fastFloor's operations (truncate; one less where that is above), and
+// with SSE2 the same ones for u and v at once, lane by lane.
+inline void floorPair(double u, double v, int& iu, int& iv, float& fu, float& fv) {
+#if defined(__SSE2__)
+  const __m128d t = _mm_setr_pd(u, v);
+  __m128i i = _mm_cvttpd_epi32(t);  // [trunc u, trunc v, 0, 0]
+  const __m128d above = _mm_cmplt_pd(t, _mm_cvtepi32_pd(i));
+  // Each 64-bit compare lane (all ones: -1) onto its 32-bit index lane.
+  i = _mm_add_epi32(i, _mm_shuffle_epi32(_mm_castpd_si128(above), _MM_SHUFFLE(3, 3, 2, 0)));
+  const __m128 f = _mm_cvtpd_ps(_mm_sub_pd(t, _mm_cvtepi32_pd(i)));
+  iu = _mm_cvtsi128_si32(i);
+  iv = _mm_cvtsi128_si32(_mm_shuffle_epi32(i, _MM_SHUFFLE(1, 1, 1, 1)));
+  fu = _mm_cvtss_f32(f);
+  fv = _mm_cvtss_f32(_mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1)));
+#else
+  iu = fastFloor(u);
+  iv = fastFloor(v);
+  fu = static_cast<float>(u - iu);
+  fv = static_cast<float>(v - iv);
+#endif
+}
+
 inline int wrapIndex(int i, int n) {
   const int r = i % n;
   return r < 0 ? r + n : r;
@@ -68,9 +91,8 @@ template <bool Wrap>
   float fx, fy;
   if constexpr (Wrap) {
     // floor without a libm call (no SSE4.1 in the baseline build)
-    const int iu = texture_detail::fastFloor(u), iv = texture_detail::fastFloor(v);
-    fx = static_cast<float>(u - iu);
-    fy = static_cast<float>(v - iv);
+    int iu, iv;
+    texture_detail::floorPair(u, v, iu, iv, fx, fy);
     if (img.wrapByMask) {
       // Power-of-two sides (two's complement): the neighbour wraps by the mask too.
       x0 = iu & img.wMask;
