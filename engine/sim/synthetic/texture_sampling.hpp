@@ -31,8 +31,30 @@ inline double fastLog2(double v) {
   return e + (m - 1);
 }
 
+// floor(u), floor(v) and the float fractions u - floor(u), v - floor(v):
+// fastFloor's operations (truncate; one less where that is above), and
+// with SSE2 the same ones for u and v at once, lane by lane.
+inline void floorPair(double u, double v, int& iu, int& iv, float& fu, float& fv) {
+#if defined(__SSE2__)
+  const __m128d t = _mm_setr_pd(u, v);
+  __m128i i = _mm_cvttpd_epi32(t);  // [trunc u, trunc v, 0, 0]
+  const __m128d above = _mm_cmplt_pd(t, _mm_cvtepi32_pd(i));
+  // Each 64-bit compare lane (all ones: -1) onto its 32-bit index lane.
+  i = _mm_add_epi32(i, _mm_shuffle_epi32(_mm_castpd_si128(above), _MM_SHUFFLE(3, 3, 2, 0)));
+  const __m128 f = _mm_cvtpd_ps(_mm_sub_pd(t, _mm_cvtepi32_pd(i)));
+  iu = _mm_cvtsi128_si32(i);
+  iv = _mm_cvtsi128_si32(_mm_shuffle_epi32(i, _MM_SHUFFLE(1, 1, 1, 1)));
+  fu = _mm_cvtss_f32(f);
+  fv = _mm_cvtss_f32(_mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1)));
+#else
+  iu = fastFloor(u);
+  iv = fastFloor(v);
+  fu = static_cast<float>(u - iu);
+  fv = static_cast<float>(v - iv);
+#endif
+}
+
 inline int wrapIndex(int i, int n) {
-  if ((n & (n - 1)) == 0) return i & (n - 1);  // power of two (two's complement)
   const int r = i % n;
   return r < 0 ? r + n : r;
 }
@@ -61,26 +83,28 @@ template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sampleLevel(int level, double u,
                                                                   double v) const {
   const LevelView& img = views_[static_cast<std::size_t>(level)];
-  // 2^-level, exact (std::ldexp is a library call per sample).
-  static constexpr double kScales[] = {1.0,        0.5,         0.25,         0.125,
-                                       0.0625,     0.03125,     0.015625,     0.0078125,
-                                       0.00390625, 0.001953125, 0.0009765625, 0.00048828125};
-  const double scale = level < 12 ? kScales[level] : std::ldexp(1.0, -level);
   // Texel centres sit at integer coordinates of each level.
-  u = u * scale - 0.5;
-  v = v * scale - 0.5;
+  u = u * img.scale - 0.5;
+  v = v * img.scale - 0.5;
   const int w = img.w, h = img.h;
   int x0, y0, x1, y1;
   float fx, fy;
   if constexpr (Wrap) {
     // floor without a libm call (no SSE4.1 in the baseline build)
-    const int iu = texture_detail::fastFloor(u), iv = texture_detail::fastFloor(v);
-    fx = static_cast<float>(u - iu);
-    fy = static_cast<float>(v - iv);
-    x0 = texture_detail::wrapIndex(iu, w);
-    y0 = texture_detail::wrapIndex(iv, h);
-    x1 = x0 + 1 == w ? 0 : x0 + 1;
-    y1 = y0 + 1 == h ? 0 : y0 + 1;
+    int iu, iv;
+    texture_detail::floorPair(u, v, iu, iv, fx, fy);
+    if (img.wrapByMask) {
+      // Power-of-two sides (two's complement): the neighbour wraps by the mask too.
+      x0 = iu & img.wMask;
+      y0 = iv & img.hMask;
+      x1 = static_cast<int>((static_cast<unsigned>(iu) + 1) & static_cast<unsigned>(img.wMask));
+      y1 = static_cast<int>((static_cast<unsigned>(iv) + 1) & static_cast<unsigned>(img.hMask));
+    } else {
+      x0 = texture_detail::wrapIndex(iu, w);
+      y0 = texture_detail::wrapIndex(iv, h);
+      x1 = x0 + 1 == w ? 0 : x0 + 1;
+      y1 = y0 + 1 == h ? 0 : y0 + 1;
+    }
   } else {
     u = std::clamp(u, 0.0, w - 1.0);
     v = std::clamp(v, 0.0, h - 1.0);
@@ -93,12 +117,16 @@ template <bool Wrap>
   }
   // Bilinear, channel by channel in plain floats (the same operations as
   // cv::Vec3f's, which the compiler did not keep in registers).
-  const float* row0 = img.data + static_cast<std::size_t>(y0) * img.rowFloats;
-  const float* row1 = img.data + static_cast<std::size_t>(y1) * img.rowFloats;
-  const float* a = row0 + 3 * x0;
-  const float* b = row0 + 3 * x1;
-  const float* c = row1 + 3 * x0;
-  const float* d = row1 + 3 * x1;
+  // The indices are never negative: through unsigned, the offsets need no
+  // sign extension.
+  const auto offset = [](int i) { return static_cast<std::size_t>(static_cast<unsigned>(i)); };
+  const float* row0 = img.data + offset(y0) * img.rowFloats;
+  const float* row1 = img.data + offset(y1) * img.rowFloats;
+  const std::size_t ox0 = 3 * offset(x0), ox1 = 3 * offset(x1);
+  const float* a = row0 + ox0;
+  const float* b = row0 + ox1;
+  const float* c = row1 + ox0;
+  const float* d = row1 + ox1;
   const float gx = 1 - fx, gy = 1 - fy;
 #if defined(__SSE2__)
   // The three channels at once: the same float operations, lane by lane.
@@ -121,10 +149,9 @@ template <bool Wrap>
 template <bool Wrap>
 [[gnu::always_inline]] inline Texture::Texel Texture::sample(double u, double v,
                                                              double footprint) const {
-  const int last = static_cast<int>(views_.size()) - 1;
   const double lod = footprint > 1 ? texture_detail::fastLog2(footprint) : 0.0;
   if (lod <= 0) return sampleLevel<Wrap>(0, u, v);
-  if (lod >= last) return sampleLevel<Wrap>(last, u, v);
+  if (lod >= lastLevelLod_) return sampleLevel<Wrap>(lastLevel_, u, v);
   const int l0 = static_cast<int>(lod);
   const float f = static_cast<float>(lod - l0);
   const Texel a = sampleLevel<Wrap>(l0, u, v), b = sampleLevel<Wrap>(l0 + 1, u, v);

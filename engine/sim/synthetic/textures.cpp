@@ -27,8 +27,18 @@ Texture::Texture(const cv::Mat& bgr8) {
     levels_.push_back(down);
     level = down;
   }
-  for (const cv::Mat& l : levels_)
-    views_.push_back({l.ptr<float>(0), l.step1(), l.cols, l.rows});
+  for (std::size_t i = 0; i < levels_.size(); ++i) {
+    const cv::Mat& l = levels_[i];
+    LevelView view{l.ptr<float>(0), l.step1(), l.cols, l.rows};
+    view.scale = std::ldexp(1.0, -static_cast<int>(i));
+    const auto powerOfTwo = [](int n) { return n > 0 && (n & (n - 1)) == 0; };
+    view.wrapByMask = powerOfTwo(l.cols) && powerOfTwo(l.rows);
+    view.wMask = l.cols - 1;
+    view.hMask = l.rows - 1;
+    views_.push_back(view);
+  }
+  lastLevel_ = static_cast<int>(views_.size()) - 1;
+  lastLevelLod_ = lastLevel_;
 }
 
 namespace {

@@ -49,12 +49,19 @@ class Texture {
   std::vector<cv::Mat> levels_;  // CV_32FC3, each half the previous
   // Each level's texels as sampleLevel reads them (no cv::Mat lookups per
   // sample); they point into levels_.
+  // Decided once per level, not per sample: the level's scale 2^-level and,
+  // when both sides are powers of two, the masks that wrap an index.
   struct LevelView {
     const float* data = nullptr;
     std::size_t rowFloats = 0;  // from a row to the next
     int w = 0, h = 0;
+    double scale = 1;          // 2^-level, exact
+    bool wrapByMask = false;   // w and h powers of two
+    int wMask = 0, hMask = 0;  // w - 1, h - 1 when wrapByMask
   };
   std::vector<LevelView> views_;
+  int lastLevel_ = -1;        // views_.size() - 1, not derived per sample
+  double lastLevelLod_ = -1;  // the same, as sample compares it
 };
 
 enum class TextureId {
