@@ -86,8 +86,8 @@ double referenceLod(double footprint) {
   return e + (m - 1);
 }
 
-cv::Vec3f referenceSample(const std::vector<cv::Mat>& levels, double u, double v,
-                          double footprint, bool wrap) {
+cv::Vec3f referenceSample(const std::vector<cv::Mat>& levels, double u, double v, double footprint,
+                          bool wrap) {
   const int last = static_cast<int>(levels.size()) - 1;
   const double lod = referenceLod(footprint);
   if (lod <= 0) return referenceLevelSample(levels[0], 0, u, v, wrap);
