@@ -62,7 +62,8 @@ inline int wrapIndex(int i, int n) {
 #if defined(__SSE2__)
 // The three floats of a texel in lanes 0-2 (lane 3: 0), reading no further.
 inline __m128 loadTexel(const float* p) {
-  const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+  // _mm_loadu_si64 makes no alignment promise; a texel starts at any multiple of 4 bytes.
+  const __m128 xy = _mm_castsi128_ps(_mm_loadu_si64(p));
   return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
 }
 
