@@ -119,7 +119,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
 
   cv::Mat topRight = mosaic(cv::Rect(size.width, 0, size.width, size.height));
   if (disparity.size() == size) {
-    colorizeDisparity(viewOf(disparity), params).copyTo(topRight);
+    colorizeDisparityInto(viewOf(disparity), params, topRight);
     drawDisparityScale(topRight, params, shrink);
   } else {
     topRight.setTo(background);
@@ -127,8 +127,7 @@ cv::Mat annotateFrame(const Frame& frame, const StereoParams& params, double fps
   label(topRight, "disparity (near red, far blue)", 0, shrink);
 
   cv::Mat bottomLeft = mosaic(cv::Rect(0, size.height, size.width, size.height));
-  cv::Mat dimmed = left * 0.25;
-  dimmed.copyTo(bottomLeft);
+  left.convertTo(bottomLeft, -1, 0.25);  // what `left * 0.25` does, without its image
   if (mask.size() == size) left.copyTo(bottomLeft, mask);
   label(bottomLeft, "inside the horopter", 0, shrink);
 

@@ -58,27 +58,46 @@ const cv::Mat& jetColours() {
 
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params) {
   checkView(disparity, PixelType::S16C1, "disparity");
+  cv::Mat out(disparity.height, disparity.width, CV_8UC3);
+  colorizeDisparityInto(disparity, params, out);
+  return out;
+}
+
+void colorizeDisparityInto(const ConstImageView& disparity, const StereoParams& params,
+                           cv::Mat& out) {
+  checkView(disparity, PixelType::S16C1, "disparity");
+  if (out.type() != CV_8UC3 || out.rows != disparity.height || out.cols != disparity.width)
+    throw Error("the disparity's colour view must be a BGR image of the disparity's size");
   const std::int16_t invalid = invalidDisparity(params);
   const int lo = params.minDisparity * kDisparityScale;
   const int hi = (params.minDisparity + params.numDisparities) * kDisparityScale;
   // One colour per disparity in [lo, hi] (those outside take the ends', as
   // the level saturates): a table lookup per pixel, where a division and
-  // the colour map per pixel cost half the annotated view's time.
+  // the colour map per pixel cost half the annotated view's time. Entry 0
+  // is the invalid disparity's black. Each entry is a colour's 3 bytes in a
+  // 4-byte word, stored whole: its 4th byte lands on the next pixel, which
+  // overwrites it (the row's last pixel copies 3 bytes, so nothing past the
+  // row is touched): 4 % fewer instructions than Vec3b assignments (callgrind).
   const cv::Mat& jet = jetColours();
-  std::vector<cv::Vec3b> colourOf(static_cast<std::size_t>(hi - lo + 1));
-  for (int v = lo; v <= hi; ++v)
-    colourOf[static_cast<std::size_t>(v - lo)] = jet.at<cv::Vec3b>(
+  std::vector<std::uint32_t> colourOf(static_cast<std::size_t>(hi - lo + 2), 0);
+  for (int v = lo; v <= hi; ++v) {
+    const cv::Vec3b colour = jet.at<cv::Vec3b>(
         0, cv::saturate_cast<std::uint8_t>(255.0 * (v - lo) / static_cast<double>(hi - lo)));
-  cv::Mat out(disparity.height, disparity.width, CV_8UC3);
+    std::memcpy(&colourOf[static_cast<std::size_t>(v - lo + 1)], colour.val, 3);
+  }
+  auto entryOf = [&](std::int16_t d) {
+    return d == invalid ? std::size_t{0}
+                        : static_cast<std::size_t>(std::clamp<int>(d, lo, hi) - lo + 1);
+  };
+  if (disparity.width < 1) return;
+  const int last = disparity.width - 1;
   for (int y = 0; y < disparity.height; ++y) {
     const auto* d = disparity.row<std::int16_t>(y);
-    auto* o = out.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < disparity.width; ++x)
-      o[x] = d[x] == invalid
-                 ? cv::Vec3b(0, 0, 0)
-                 : colourOf[static_cast<std::size_t>(std::clamp<int>(d[x], lo, hi) - lo)];
+    std::uint8_t* o = out.ptr<std::uint8_t>(y);
+    for (int x = 0; x < last; ++x)
+      std::memcpy(o + 3 * static_cast<std::size_t>(x), &colourOf[entryOf(d[x])], 4);
+    std::memcpy(o + 3 * static_cast<std::size_t>(last), &colourOf[entryOf(d[last])], 3);
   }
-  return out;
 }
 
 namespace {

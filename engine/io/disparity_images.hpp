@@ -12,6 +12,11 @@ namespace horopter {
 // Colour view of a disparity map: near = hot (red), far = cold (blue),
 // invalid = black. The colour scale spans the search range of `params`.
 cv::Mat colorizeDisparity(const ConstImageView& disparity, const StereoParams& params);
+// The same, drawn into `out` (BGR, the disparity's size; a view into a
+// larger image, such as a mosaic's panel, saves an image and its copy).
+// Throws horopter::Error when `out` is not such an image.
+void colorizeDisparityInto(const ConstImageView& disparity, const StereoParams& params,
+                           cv::Mat& out);
 
 // The colour scale of colorizeDisparity: a bar in the bottom-right corner of
 // `view` (a BGR image) from the search range's lowest disparity (left, blue)

@@ -515,6 +515,30 @@ TEST(Frontend, ColourViewIsTheJetMapOfEachDisparitysLevel) {
   EXPECT_GT(cv::countNonZero(expected.reshape(1) != 0), 0) << "not all black";
 }
 
+// Drawn into a panel of a larger image: the same colours as the view of its
+// own, the image around the panel untouched; a panel of another size or
+// type is refused.
+TEST(Frontend, ColourViewDrawnIntoAPanelMatchesItsOwnImage) {
+  StereoParams p;
+  p.numDisparities = 32;
+  cv::Mat disparity(20, 30, CV_16SC1);
+  for (int i = 0; i < 600; ++i)
+    disparity.at<std::int16_t>(i / 30, i % 30) =
+        i % 7 == 0 ? invalidDisparity(p) : static_cast<std::int16_t>(i - 40);
+  cv::Mat mosaic(40, 60, CV_8UC3, cv::Scalar(7, 8, 9));
+  cv::Mat panel = mosaic(cv::Rect(25, 10, 30, 20));
+  colorizeDisparityInto(viewOf(disparity), p, panel);
+  EXPECT_EQ(panel.data, mosaic.ptr(10, 25)) << "drawn in place";
+  EXPECT_EQ(cv::norm(panel, colorizeDisparity(viewOf(disparity), p), cv::NORM_INF), 0);
+  cv::Mat around = mosaic.clone();
+  around(cv::Rect(25, 10, 30, 20)).setTo(cv::Scalar(7, 8, 9));
+  EXPECT_EQ(cv::norm(around, cv::Mat(around.size(), CV_8UC3, cv::Scalar(7, 8, 9)), cv::NORM_INF), 0)
+      << "the image around the panel untouched";
+  cv::Mat small(19, 30, CV_8UC3), grey(20, 30, CV_8UC1);
+  EXPECT_THROW(colorizeDisparityInto(viewOf(disparity), p, small), Error);
+  EXPECT_THROW(colorizeDisparityInto(viewOf(disparity), p, grey), Error);
+}
+
 // The colour scale: blue at its left end (the lowest disparity), red at its
 // right end, the rest of the view untouched.
 TEST(Frontend, ColourScaleRunsFromBlueToRedInItsCorner) {
