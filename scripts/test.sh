@@ -51,8 +51,11 @@ if [ "${1:-}" = "--thread" ]; then
   # processes).
   echo "test: pytest (ThreadSanitizer: the Python module's threads)"
   module_dir="$root/build-tsan/bindings/python"
-  # The TSan runtime the module was linked with, loaded first.
-  tsan_runtime="$(ldd "$module_dir"/horopter*.so | awk '/libtsan/ { print $3; exit }')"
+  # The TSan runtime the module was linked with, loaded first. awk reads
+  # all of ldd's output: leaving early made ldd's last write fail (SIGPIPE),
+  # ldd exit 1 and, under pipefail, this script stop without a word (CI's
+  # run of c478011; 5 of 30 tries here).
+  tsan_runtime="$(ldd "$module_dir"/horopter*.so | awk '/libtsan/ && !found { print $3; found = 1 }')"
   [ -n "$tsan_runtime" ] || { echo "test: no libtsan in $module_dir's module" >&2; exit 1; }
   python="$(sed -n 's/^_Python_EXECUTABLE:INTERNAL=//p' "$root/build-tsan/CMakeCache.txt")"
   # --capture=sys: a TSan report (written to file descriptor 2 as the
