@@ -47,6 +47,9 @@ Registry probe() {
       cl_uint units = 1;
       clGetDeviceInfo(id, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof(units), &units, nullptr);
       d.computeUnits = units > 0 ? units : 1;
+      cl_ulong maxAlloc = 0;
+      clGetDeviceInfo(id, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(maxAlloc), &maxAlloc, nullptr);
+      d.maxAlloc = maxAlloc;
       reg.owned.push_back(std::make_unique<Device>(std::move(d)));
       reg.list.push_back(reg.owned.back().get());
     }

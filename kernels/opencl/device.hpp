@@ -19,6 +19,7 @@ struct DeviceDesc {
   std::string name, platformName, version, driverVersion;
   bool gpu = false;
   unsigned computeUnits = 1;
+  unsigned long long maxAlloc = 0;  // CL_DEVICE_MAX_MEM_ALLOC_SIZE, bytes
 };
 
 // Where a program came from, for tests and logs.

@@ -1,7 +1,10 @@
 #include "opencl/launch.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 
+#include "horopter/core/error.hpp"
 #include "prefilter/prefilter.hpp"
 #include "sad/sad.hpp"
 
@@ -17,9 +20,18 @@ size_t roundUp(size_t v, size_t to) {
   return (v + to - 1) / to * to;
 }
 
+// A __local argument of `bytes` bytes.
+struct LocalBytes {
+  size_t bytes;
+};
+
 template <typename T>
 void setArg(cl_kernel k, cl_uint& index, const T& value) {
   check(clSetKernelArg(k, index++, sizeof(T), &value), "setting a kernel argument");
+}
+
+void setArg(cl_kernel k, cl_uint& index, const LocalBytes& local) {
+  check(clSetKernelArg(k, index++, local.bytes, nullptr), "setting a local-memory argument");
 }
 
 template <typename... Args>
@@ -70,6 +82,9 @@ Kernels::Kernels(Device& device)
     : prefilter(createKernel(device, "prefilter_xsobel")),
       prefilterNormalized(createKernel(device, "prefilter_normalized")),
       sad(createKernel(device, "sad_match")),
+      sadCosts(createKernel(device, "sad_costs")),
+      sadDecide(createKernel(device, "sad_decide")),
+      sadRightWinners(createKernel(device, "sad_right_winners")),
       lrCheck(createKernel(device, "lr_check")),
       median(createKernel(device, "median_filter")),
       mask(createKernel(device, "horopter_mask")) {}
@@ -132,12 +147,33 @@ void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const Stere
                      event);
 }
 
-void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,
-                  cl_mem left, cl_mem right, cl_mem texture, int width, int height,
-                  const StereoParams& params, const BelowRangeGuard& guard, RowRange rows,
-                  cl_mem disparity, cl_mem winnerRight, SadScratch& scratch, cl_event* event) {
+SadShape sadShape(const DeviceDesc& device) {
+  const char* env = std::getenv("HOROPTER_OPENCL_SAD");
+  const std::string value = env != nullptr ? env : "";
+  if (value == "strip") return SadShape::Strip;
+  if (value == "tiled") return SadShape::Tiled;
+  if (value.empty() || value == "auto") return device.gpu ? SadShape::Tiled : SadShape::Strip;
+  throw Error("HOROPTER_OPENCL_SAD='" + value +
+              "' is not a SAD kernel shape: use strip (one work-item per strip of rows, for "
+              "CPU devices), tiled (cost volume, for GPUs) or auto (tiled on a GPU)");
+}
+
+const char* sadShapeName(SadShape shape) {
+  return shape == SadShape::Tiled ? "tiled" : "strip";
+}
+
+namespace {
+
+cl_event* eventFor(const EventSink& events, const char* stage) {
+  return events ? events(stage) : nullptr;
+}
+
+void enqueueMatchStrip(cl_command_queue q, cl_kernel k, const DeviceDesc& device,
+                       cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
+                       int height, const StereoParams& params, const BelowRangeGuard& guard,
+                       RowRange rows, cl_mem disparity, cl_mem winnerRight, SadScratch& scratch,
+                       cl_event* event) {
   const int count = rows.end - rows.begin;
-  if (count <= 0) return;
   const MatchRegion region = matchRegion(width, height, params);
   const int radius = params.blockSize / 2;
   // A strip of rows per work-item: a few per compute unit on a CPU (the
@@ -163,6 +199,82 @@ void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_
   const size_t local = 1;
   check(clEnqueueNDRangeKernel(q, k, 1, nullptr, &global, &local, 0, nullptr, event),
         "running the matcher");
+}
+
+// The cost volume's work-group: 32 columns (a warp's consecutive words) by
+// 8 rows; fixed, so PoCL compiles sad_costs once.
+constexpr size_t kCostTileWidth = 32;
+constexpr size_t kCostTileHeight = 8;
+// The most one band's cost volume may take (and the device's allocation
+// limit): 1280x720 with 128 disparities needs 0.47 GB, one band.
+constexpr size_t kMaxCostVolumeBytes = size_t{1} << 30;
+
+void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
+                       cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
+                       int height, const StereoParams& params, const BelowRangeGuard& guard,
+                       RowRange rows, cl_mem disparity, cl_mem winnerRight, SadScratch& scratch,
+                       const EventSink& events) {
+  const MatchRegion region = matchRegion(width, height, params);
+  const int radius = params.blockSize / 2;
+  const int guards = guardCount(params, guard);
+  const int useTexture = params.textureThreshold > 0 ? 1 : 0;
+  const int planes = params.numDisparities + guards + useTexture;
+  const size_t rowBytes = static_cast<size_t>(planes) * static_cast<size_t>(width) * 4;
+  size_t cap = kMaxCostVolumeBytes;
+  if (device.maxAlloc > 0) cap = std::min<size_t>(cap, device.maxAlloc);
+  const int bandRows =
+      static_cast<int>(std::clamp<size_t>(cap / rowBytes, 1, static_cast<size_t>(height)));
+  const int regionRows =
+      std::max(0, std::min(region.y1, rows.end) - std::max(region.y0, rows.begin));
+  cl_mem costs = scratch.costs.get(
+      context, rowBytes * static_cast<size_t>(std::min(bandRows, std::max(regionRows, 1))));
+  const int minD = params.minDisparity, numD = params.numDisparities;
+  for (int b0 = rows.begin; b0 < rows.end; b0 += bandRows) {
+    const int b1 = std::min(rows.end, b0 + bandRows);
+    const int yA = std::max(region.y0, b0);
+    // No region rows where the region has no columns either.
+    const int yB = region.x0 < region.x1 ? std::max(yA, std::min(region.y1, b1)) : yA;
+    if (yA < yB) {
+      cl_kernel k = kernels.sadCosts.get();
+      setArgs(k, left, right, texture, width, width, minD, numD, radius, region.x0, region.x1, yA,
+              yB, guard.step, guards, useTexture, costs,
+              LocalBytes{(kCostTileWidth + 2 * static_cast<size_t>(radius)) * kCostTileHeight * 4});
+      const size_t global[2] = {roundUp(static_cast<size_t>(region.x1 - region.x0), kCostTileWidth),
+                                roundUp(static_cast<size_t>(yB - yA), kCostTileHeight)};
+      const size_t local[2] = {kCostTileWidth, kCostTileHeight};
+      check(clEnqueueNDRangeKernel(q, k, 2, nullptr, global, local, 0, nullptr,
+                                   eventFor(events, "match costs")),
+            "running the matcher's cost volume");
+    }
+    const RowRange band{b0, b1};
+    cl_kernel decide = kernels.sadDecide.get();
+    setArgs(decide, costs, width, minD, numD, params.textureThreshold, params.uniquenessRatio,
+            region.x0, region.x1, yA, yB, b0, b1, guards, disparity, width);
+    enqueuePerPixel(q, decide, width, band, eventFor(events, "match decide"),
+                    "running the matcher's decisions");
+    cl_kernel winners = kernels.sadRightWinners.get();
+    setArgs(winners, costs, width, minD, numD, useTexture, region.x0, region.x1, yA, yB, b0, b1,
+            guard.step, guards, winnerRight, width);
+    enqueuePerPixel(q, winners, width, band, eventFor(events, "match right winners"),
+                    "running the matcher's right winners");
+  }
+}
+
+}  // namespace
+
+void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
+                  cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
+                  int height, const StereoParams& params, const BelowRangeGuard& guard,
+                  RowRange rows, cl_mem disparity, cl_mem winnerRight, SadScratch& scratch,
+                  const EventSink& events) {
+  if (rows.end <= rows.begin) return;
+  if (sadShape(device) == SadShape::Tiled)
+    enqueueMatchTiled(q, kernels, device, context, left, right, texture, width, height, params,
+                      guard, rows, disparity, winnerRight, scratch, events);
+  else
+    enqueueMatchStrip(q, kernels.sad.get(), device, context, left, right, texture, width, height,
+                      params, guard, rows, disparity, winnerRight, scratch,
+                      eventFor(events, "match"));
 }
 
 void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "horopter/core/image.hpp"
@@ -50,8 +51,13 @@ class Events {
 // The kernels of a device's program; one set per thread that enqueues.
 struct Kernels {
   explicit Kernels(Device& device);
-  KernelHandle prefilter, prefilterNormalized, sad, lrCheck, median, mask;
+  KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, sadRightWinners, lrCheck,
+      median, mask;
 };
+
+// Where a launch's profiling events go: a slot for the event of the stage
+// named, or nullptr (an empty sink: no events).
+using EventSink = std::function<cl_event*(const char* stage)>;
 
 // Rows [r0, r1) of `view` into the tight buffer / back from it.
 void writeRows(cl_command_queue q, cl_mem buffer, const ConstImageView& view, int r0, int r1,
@@ -73,14 +79,27 @@ void enqueuePrefilterFor(cl_command_queue q, const Kernels& kernels, const Stere
                          cl_mem src, int width, int height, RowRange rows, cl_mem filtered,
                          cl_mem texture, bool wantFiltered, bool wantTexture, cl_event* event);
 
-// Scratch of the matcher, per strip of rows.
+// The SAD matcher's two shapes (same outputs, bit for bit): Strip, one
+// work-item per strip of rows (sad.cl, for CPU devices), and Tiled, a cost
+// volume and per-pixel kernels (sad_tiled.cl, for GPUs).
+enum class SadShape { Strip, Tiled };
+// HOROPTER_OPENCL_SAD=strip|tiled|auto (unset or empty: auto): auto takes
+// Tiled on a GPU and Strip elsewhere. Any other value is a horopter::Error.
+SadShape sadShape(const DeviceDesc& device);
+const char* sadShapeName(SadShape shape);
+
+// Scratch of the matcher: per strip of rows (Strip), the cost volume (Tiled).
 struct SadScratch {
-  Buffer colsum, colTex, rightCost, rightD, guardColumns;
+  Buffer colsum, colTex, rightCost, rightD, guardColumns, costs;
 };
-void enqueueMatch(cl_command_queue q, cl_kernel k, const DeviceDesc& device, cl_context context,
-                  cl_mem left, cl_mem right, cl_mem texture, int width, int height,
-                  const StereoParams& params, const BelowRangeGuard& guard, RowRange rows,
-                  cl_mem disparity, cl_mem winnerRight, SadScratch& scratch, cl_event* event);
+// Events: "match" (Strip), or "match costs", "match decide" and "match
+// right winners" (Tiled; once per band of rows when the cost volume of all
+// the rows would pass the device's allocation limit).
+void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
+                  cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
+                  int height, const StereoParams& params, const BelowRangeGuard& guard,
+                  RowRange rows, cl_mem disparity, cl_mem winnerRight, SadScratch& scratch,
+                  const EventSink& events);
 
 void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,
                            int width, const StereoParams& params, RowRange rows, cl_event* event);

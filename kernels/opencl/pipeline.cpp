@@ -1,5 +1,6 @@
 #include "opencl/pipeline.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -62,6 +63,7 @@ Pipeline::Pipeline(const std::string& backendName, const StereoParams& stereo,
   Impl& s = *impl_;
   s.device = devices()[static_cast<std::size_t>(index)];
   s.median = median;
+  sadShape(s.device->desc());  // a bad HOROPTER_OPENCL_SAD fails here, not at the first frame
   s.kernels = std::make_unique<Kernels>(*s.device);  // builds the program (or throws)
   s.queue = createQueue(*s.device);
   s.slots = std::vector<Impl::Slot>(static_cast<std::size_t>(slots));
@@ -115,8 +117,8 @@ void Pipeline::submit(int index, const ConstImageView& left, const ConstImageVie
   } else if (wantTexture) {
     enqueuePrefilterFor(q, *s.kernels, p, l, w, h, all, lf, tex, false, true, slot.add("texture"));
   }
-  enqueueMatch(q, s.kernels->sad.get(), s.device->desc(), ctx, filter ? lf : l, filter ? rf : r,
-               tex, w, h, p, guard, all, d, wr, slot.sad, slot.add("match"));
+  enqueueMatch(q, *s.kernels, s.device->desc(), ctx, filter ? lf : l, filter ? rf : r, tex, w, h, p,
+               guard, all, d, wr, slot.sad, [&slot](const char* stage) { return slot.add(stage); });
   if (p.disp12MaxDiff >= 0)
     enqueueLeftRightCheck(q, s.kernels->lrCheck.get(), d, wr, w, p, all,
                           slot.add("left-right check"));
@@ -150,8 +152,16 @@ void Pipeline::wait(int index, std::vector<OpenClStageTime>& times) {
   const auto& events = slot.events.list();
   check(clWaitForEvents(static_cast<cl_uint>(events.size()), events.data()),
         "waiting for the frame");
-  for (std::size_t i = 0; i < events.size(); ++i)
-    times.push_back({slot.names[i], eventMs(events[i]), true});
+  // A stage enqueued more than once (the tiled matcher's bands) is one entry.
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const auto same = std::find_if(times.begin(), times.end(), [&](const OpenClStageTime& t) {
+      return t.stage == slot.names[i];
+    });
+    if (same != times.end())
+      same->ms += eventMs(events[i]);
+    else
+      times.push_back({slot.names[i], eventMs(events[i]), true});
+  }
   if (slot.stereo.speckleWindowSize == 0) return;
 
   const auto start = std::chrono::steady_clock::now();

@@ -108,8 +108,8 @@ void match(int index, const ConstImageView& left, const ConstImageView& right,
   const std::size_t outBytes = imageBytes(w, h, PixelType::S16C1);
   cl_mem d = s.out0.get(call.context(), outBytes);
   cl_mem wr = s.out1.get(call.context(), outBytes);
-  enqueueMatch(call.queue(), call.kernels().sad.get(), s.device->desc(), call.context(), l, rt, t,
-               w, h, params, guard, rows, d, wr, s.sad, nullptr);
+  enqueueMatch(call.queue(), call.kernels(), s.device->desc(), call.context(), l, rt, t, w, h,
+               params, guard, rows, d, wr, s.sad, {});
   readRows(call.queue(), d, disparity, rows.begin, rows.end, false, nullptr);
   readRows(call.queue(), wr, winnerRight, rows.begin, rows.end, true, nullptr);
 }

@@ -1,0 +1,176 @@
+// OpenCL C 1.2 SAD block matching shaped for GPUs: the same outputs as
+// sad_match (sad.cl), bit for bit (sad_scalar.cpp states the semantics).
+//
+// Strategy
+//   sad_match gives one work-item a strip of rows, which suits a CPU and
+//   starves a GPU. Here three kernels share a cost volume in global memory:
+//   - sad_costs: a 2-D NDRange over the region's pixels in fixed
+//     work-groups (launch.cpp: 32 x 8). For each plane, the group sums the
+//     window's height for its columns plus the window's margins into local
+//     memory (one value per column and row of the tile), then each
+//     work-item sums the window's width from there and writes its pixel's
+//     cost. Planes: the range's disparities (minD + k, k < numD), the
+//     guard's checked ones (minD - (n + 1) * guardStep, n < guardCount) and,
+//     when the texture test is on, the texture's window sum. A guard plane
+//     holds INT_MAX where the disparity does not count (x - g + radius >=
+//     width: the window would leave the right image); no real cost reaches
+//     it (at most 255 * 255^2).
+//   - sad_decide: one work-item per output pixel (x, y) reads its pixel's
+//     planes (adjacent work-items read adjacent words of a plane): winner
+//     (strict <: the smallest d wins ties), texture, uniqueness, guard and
+//     the integer equiangular fit, as decidePixel in the reference.
+//   - sad_right_winners: one work-item per right pixel xr replays the
+//     reference's choice: the least C(xr + d, d) over the d whose left
+//     pixel lies in the region's columns (strict <, d increasing), then the
+//     guard's candidates in increasing g (strict <), which win when <= the
+//     range's least, written as min(g, minD - 2).
+//   Volume layout: costs[((y - yA) * planes + p) * width + x], yA the first
+//   region row of the call's rows: plane-major within a row, so every
+//   kernel reads and writes consecutive x in consecutive work-items.
+//   Rows of [rowBegin, rowEnd) outside the region and columns outside
+//   [x0, x1) get the invalid markers from sad_decide and sad_right_winners.
+
+__kernel void sad_costs(__global const uchar* restrict left, __global const uchar* restrict right,
+                        __global const uchar* restrict texture, int inStride, int width, int minD,
+                        int numD, int radius, int x0, int x1, int yA, int yB, int guardStep,
+                        int guardCount, int useTexture, __global int* restrict costs,
+                        __local int* restrict vsum) {
+  const int lx = get_local_id(0), ly = get_local_id(1);
+  const int tileW = get_local_size(0);
+  const int bx = x0 + get_group_id(0) * tileW;
+  const int x = bx + lx;
+  const int y = yA + get_global_id(1);
+  const int tw = tileW + 2 * radius;  // the tile's columns [bx - radius, bx + tileW + radius)
+  const int planes = numD + guardCount + useTexture;
+  const int rowOk = y < yB;
+  __local int* restrict mine = vsum + ly * tw;
+  for (int p = 0; p < planes; ++p) {
+    const int kind = p < numD ? 0 : (p < numD + guardCount ? 1 : 2);  // range, guard, texture
+    const int d = kind == 0 ? minD + p : (kind == 1 ? minD - (p - numD + 1) * guardStep : 0);
+    if (rowOk) {
+      for (int tx = lx; tx < tw; tx += tileW) {
+        const int gx = bx - radius + tx;
+        int s = 0;
+        // Columns past the region's windows, or whose right pixel lies past
+        // the image (guard planes only), are never summed into a cost kept.
+        if (gx < x1 + radius && gx - d < width) {
+          const int top = (y - radius) * inStride;
+          if (kind == 2) {
+            __global const uchar* t = texture + top + gx;
+            for (int j = 0; j <= 2 * radius; ++j)
+              s += t[j * inStride];
+          } else {
+            __global const uchar* l = left + top + gx;
+            __global const uchar* r = right + top + gx - d;
+            for (int j = 0; j <= 2 * radius; ++j)
+              s += abs((int)l[j * inStride] - (int)r[j * inStride]);
+          }
+        }
+        mine[tx] = s;
+      }
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (rowOk && x < x1) {
+      int c = 0;
+      for (int i = 0; i <= 2 * radius; ++i)
+        c += mine[lx + i];
+      if (kind == 1 && x - d + radius >= width) c = INT_MAX;
+      costs[((size_t)(y - yA) * planes + p) * width + x] = c;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+}
+
+long sad_tiled_floor_div16(long v) {
+  long q = v / 16;
+  if (v % 16 < 0) q -= 1;
+  return q;
+}
+
+__kernel void sad_decide(__global const int* restrict costs, int width, int minD, int numD,
+                         int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
+                         int rowBegin, int rowEnd, int guardCount, __global short* restrict disparity,
+                         int outStride) {
+  const int x = get_global_id(0);
+  const int y = rowBegin + get_global_id(1);
+  if (x >= width || y >= rowEnd) return;
+  short result = (short)((minD - 1) * 16);
+  if (y >= yA && y < yB && x >= x0 && x < x1) {
+    const int useTexture = textureThreshold > 0;
+    const int planes = numD + guardCount + useTexture;
+    __global const int* c = costs + (size_t)(y - yA) * planes * width + x;
+    int best = 0;
+    int bestCost = c[0];
+    for (int k = 1; k < numD; ++k) {
+      const int v = c[(size_t)k * width];
+      if (v < bestCost) {
+        bestCost = v;
+        best = k;
+      }
+    }
+    int ok = !(useTexture && c[(size_t)(numD + guardCount) * width] < textureThreshold);
+    const long c0 = bestCost;
+    const long limit = c0 + c0 * uniquenessRatio / 100;
+    if (ok && uniquenessRatio > 0) {
+      for (int k = 0; k < numD && ok; ++k)
+        ok = !(abs(k - best) > 1 && (long)c[(size_t)k * width] <= limit);
+    }
+    if (ok && guardCount > 0) {
+      int guardLeast = INT_MAX;  // INT_MAX: the plane does not count here
+      for (int n = 0; n < guardCount; ++n)
+        guardLeast = min(guardLeast, c[(size_t)(numD + n) * width]);
+      ok = !(guardLeast != INT_MAX && (long)guardLeast <= limit);
+    }
+    if (ok) {
+      const long cm = c[(size_t)(best > 0 ? best - 1 : best + 1) * width];
+      const long cp = c[(size_t)(best < numD - 1 ? best + 1 : best - 1) * width];
+      const long den = cm + cp - 2 * c0 + (cm > cp ? cm - cp : cp - cm);
+      const long off = den > 0 ? (cm - cp) * 256 / den : 0;
+      const long d = (long)(minD + best);
+      result = (short)sad_tiled_floor_div16(d * 256 + off + 8);
+    }
+  }
+  disparity[y * outStride + x] = result;
+}
+
+__kernel void sad_right_winners(__global const int* restrict costs, int width, int minD, int numD,
+                                int useTexture, int x0, int x1, int yA, int yB, int rowBegin,
+                                int rowEnd, int guardStep, int guardCount,
+                                __global short* restrict winnerRight, int outStride) {
+  const int xr = get_global_id(0);
+  const int y = rowBegin + get_global_id(1);
+  if (xr >= width || y >= rowEnd) return;
+  const int maxD = minD + numD - 1;
+  short result = (short)(minD - 1);
+  if (y >= yA && y < yB && xr >= x0 - maxD && xr < x1 - minD) {
+    const int planes = numD + guardCount + useTexture;
+    __global const int* c = costs + (size_t)(y - yA) * planes * width;
+    // The d whose left pixel xr + d lies in [x0, x1): never empty here.
+    const int kLo = max(0, x0 - xr - minD);
+    const int kHi = min(numD - 1, x1 - 1 - xr - minD);
+    int best = INT_MAX;
+    int bestK = kLo;
+    for (int k = kLo; k <= kHi; ++k) {
+      const int v = c[(size_t)k * width + xr + minD + k];
+      if (v < best) {
+        best = v;
+        bestK = k;
+      }
+    }
+    result = (short)(minD + bestK);
+    int least = INT_MAX;
+    int leastD = 0;
+    for (int n = guardCount - 1; n >= 0; --n) {
+      const int g = minD - (n + 1) * guardStep;
+      const int x = xr + g;
+      if (x < x0 || x >= x1) continue;
+      const int v = c[(size_t)(numD + n) * width + x];
+      if (v < least) {
+        least = v;
+        leastD = g;
+      }
+    }
+    if (least <= best) result = (short)min(leastD, minD - 2);
+  }
+  winnerRight[y * outStride + xr] = result;
+}
