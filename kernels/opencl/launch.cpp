@@ -1,6 +1,7 @@
 #include "opencl/launch.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <string>
 
@@ -208,6 +209,7 @@ constexpr size_t kCostTileHeight = 8;
 // The most one band's cost volume may take (and the device's allocation
 // limit): 1280x720 with 128 disparities needs 0.47 GB, one band.
 constexpr size_t kMaxCostVolumeBytes = size_t{1} << 30;
+std::atomic<size_t> g_bandBytes{0};  // setTiledBandBytes
 
 void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
                        cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
@@ -222,6 +224,7 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
   const size_t rowBytes = static_cast<size_t>(planes) * static_cast<size_t>(width) * 4;
   size_t cap = kMaxCostVolumeBytes;
   if (device.maxAlloc > 0) cap = std::min<size_t>(cap, device.maxAlloc);
+  if (g_bandBytes > 0) cap = g_bandBytes;
   const int bandRows =
       static_cast<int>(std::clamp<size_t>(cap / rowBytes, 1, static_cast<size_t>(height)));
   const int regionRows =
@@ -275,6 +278,10 @@ void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& 
     enqueueMatchStrip(q, kernels.sad.get(), device, context, left, right, texture, width, height,
                       params, guard, rows, disparity, winnerRight, scratch,
                       eventFor(events, "match"));
+}
+
+void setTiledBandBytes(std::size_t bytes) {
+  g_bandBytes = bytes;
 }
 
 void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,

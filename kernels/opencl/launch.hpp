@@ -100,6 +100,9 @@ void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& 
                   int height, const StereoParams& params, const BelowRangeGuard& guard,
                   RowRange rows, cl_mem disparity, cl_mem winnerRight, SadScratch& scratch,
                   const EventSink& events);
+// Test hook: while non-zero, the most bytes one band of the tiled matcher's
+// cost volume may take (0: the default, 1 GiB or the device's limit).
+void setTiledBandBytes(std::size_t bytes);
 
 void enqueueLeftRightCheck(cl_command_queue q, cl_kernel k, cl_mem disparity, cl_mem winnerRight,
                            int width, const StereoParams& params, RowRange rows, cl_event* event);

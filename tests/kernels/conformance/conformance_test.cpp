@@ -6,6 +6,11 @@
 // is skipped with its reason, unless HOROPTER_REQUIRE_BACKENDS (a
 // comma-separated list of names) names it: then it fails.
 //
+// An OpenCL backend is enrolled twice, once per shape of its SAD matcher
+// ("opencl@strip", "opencl@tiled": HOROPTER_OPENCL_SAD is set for the case),
+// so both shapes meet the reference on every run, whichever one the device
+// would pick by itself.
+//
 // The reference runs on tightly packed buffers; the backend runs on the same
 // pixels in three layouts: tight (exact-size allocations, so AddressSanitizer
 // catches any access past the last pixel), padded strides, and a view into the
@@ -16,6 +21,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +39,7 @@
 #include "horopter/vision/opencv.hpp"
 #include "horopter/vision/zone_search.hpp"
 #include "sad/sad.hpp"
+#include "scoped_env.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {
@@ -56,6 +63,28 @@ std::vector<std::string> requiredNames() {
     if (!name.empty()) names.push_back(name);
   }
   return names;
+}
+
+// The fixture's parameters: a backend's name, with "@strip" or "@tiled"
+// (the SAD matcher's shape) for an OpenCL backend.
+std::vector<std::string> conformanceParams() {
+  std::vector<std::string> params;
+  for (const std::string& name : registeredNames()) {
+    if (name.rfind("opencl", 0) == 0) {
+      params.push_back(name + "@strip");
+      params.push_back(name + "@tiled");
+    } else {
+      params.push_back(name);
+    }
+  }
+  return params;
+}
+std::string backendOf(const std::string& param) {
+  return param.substr(0, param.find('@'));
+}
+std::string sadShapeOf(const std::string& param) {
+  const std::size_t at = param.find('@');
+  return at == std::string::npos ? "" : param.substr(at + 1);
 }
 
 const Backend* backendNamed(const std::string& name) {
@@ -100,15 +129,18 @@ TEST(ConformanceSetup, RequiredBackendsAreRegistered) {
 class Conformance : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
-    backend_ = backendNamed(GetParam());
+    const std::string name = backendOf(GetParam());
+    backend_ = backendNamed(name);
     ASSERT_NE(backend_, nullptr) << GetParam();
+    if (const std::string shape = sadShapeOf(GetParam()); !shape.empty())
+      sadShape_.emplace("HOROPTER_OPENCL_SAD", shape.c_str());
     if (!backend_->available) {
       const auto required = requiredNames();
-      if (std::find(required.begin(), required.end(), GetParam()) != required.end())
-        FAIL() << "backend '" << GetParam()
+      if (std::find(required.begin(), required.end(), name) != required.end())
+        FAIL() << "backend '" << name
                << "' is required (HOROPTER_REQUIRE_BACKENDS) but not available here: "
                << backend_->unavailableReason;
-      GTEST_SKIP() << "backend '" << GetParam()
+      GTEST_SKIP() << "backend '" << name
                    << "' is not available on this machine: " << backend_->unavailableReason
                    << " (list it in HOROPTER_REQUIRE_BACKENDS to make this a failure)";
     }
@@ -118,6 +150,7 @@ class Conformance : public ::testing::TestWithParam<std::string> {
 
  private:
   const Backend* backend_ = nullptr;
+  std::optional<ScopedEnv> sadShape_;  // HOROPTER_OPENCL_SAD for this case
 };
 
 std::string backendTestName(const ::testing::TestParamInfo<std::string>& info) {
@@ -127,7 +160,7 @@ std::string backendTestName(const ::testing::TestParamInfo<std::string>& info) {
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, Conformance, ::testing::ValuesIn(registeredNames()),
+INSTANTIATE_TEST_SUITE_P(Backends, Conformance, ::testing::ValuesIn(conformanceParams()),
                          backendTestName);
 
 // ---------------------------------------------------------------------------

@@ -1,9 +1,11 @@
 // The asynchronous OpenCL front end: several frames in flight give the
 // scalar front end's results in order; stage times come from profiling
 // events; an injected build or enqueue failure falls back to the CPU
-// without losing or reordering frames; a bad device name is an error.
+// without losing or reordering frames; a bad device name is an error. The
+// chains run with both shapes of the SAD matcher (HOROPTER_OPENCL_SAD).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -11,9 +13,11 @@
 #include "horopter/core/error.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencl_frontend.hpp"
+#include "opencl/launch.hpp"
 #include "opencl/pipeline.hpp"
 #include "opencl/program_cache.hpp"
 #include "opencl_support.hpp"
+#include "scoped_env.hpp"
 #include "test_support.hpp"
 
 namespace horopter::test {
@@ -52,6 +56,9 @@ std::vector<Setting> settings() {
   return out;
 }
 
+// The SAD matcher's shapes (kernels/opencl/launch.hpp).
+constexpr const char* kSadShapes[] = {"strip", "tiled"};
+
 std::vector<StereoPair> frames(int count) {
   std::vector<StereoPair> out;
   for (int i = 0; i < count; ++i)
@@ -72,23 +79,25 @@ std::vector<TestImage> expected(const Setting& s, const std::vector<StereoPair>&
 TEST(OpenClFrontend, FramesInFlightEqualTheScalarFrontendInOrder) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(5);
-  for (const Setting& s : settings()) {
-    SCOPED_TRACE(s.what);
-    const std::vector<TestImage> want = expected(s, pairs);
-    OpenClFrontend frontend(s.stereo, s.median, "opencl", 3);
-    ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
-    // Three in flight, then one at a time; the fourth submit completes the first.
-    std::vector<OpenClFrontend::Ticket> tickets;
-    for (std::size_t i = 0; i < 3; ++i)
-      tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view()));
-    for (std::size_t i = 0; i < 3; ++i)
-      EXPECT_TRUE(sameImage(want[i].view(), frontend.wait(tickets[i]).view())) << "frame " << i;
-    for (std::size_t i = 3; i < pairs.size(); ++i) {
-      const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
-      EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+  for (const char* shape : kSadShapes)
+    for (const Setting& s : settings()) {
+      const ScopedEnv sad("HOROPTER_OPENCL_SAD", shape);
+      SCOPED_TRACE(std::string(s.what) + ", SAD " + shape);
+      const std::vector<TestImage> want = expected(s, pairs);
+      OpenClFrontend frontend(s.stereo, s.median, "opencl", 3);
+      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+      // Three in flight, then one at a time; the fourth submit completes the first.
+      std::vector<OpenClFrontend::Ticket> tickets;
+      for (std::size_t i = 0; i < 3; ++i)
+        tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view()));
+      for (std::size_t i = 0; i < 3; ++i)
+        EXPECT_TRUE(sameImage(want[i].view(), frontend.wait(tickets[i]).view())) << "frame " << i;
+      for (std::size_t i = 3; i < pairs.size(); ++i) {
+        const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
+        EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+      }
+      EXPECT_FALSE(frontend.onCpu());
     }
-    EXPECT_FALSE(frontend.onCpu());
-  }
 }
 
 // Zone-limited matching: frames in flight, each over its own search range
@@ -98,40 +107,95 @@ TEST(OpenClFrontend, EachFrameSearchesItsOwnRange) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(4);
   const SearchRange ranges[] = {{16, 48, 3}, {0, 64}, {32, 32, 1}, {8, 48}};
-  for (const Setting& s : settings()) {
-    if (s.stereo.minDisparity != 0 || s.stereo.numDisparities < 32) continue;
-    SCOPED_TRACE(s.what);
-    StereoFrontend ref(s.stereo, s.median, scalarBackend());
-    OpenClFrontend frontend(s.stereo, s.median, "opencl", 4);
-    ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
-    std::vector<OpenClFrontend::Ticket> tickets;
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
-      tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view(), r));
+  for (const char* shape : kSadShapes)
+    for (const Setting& s : settings()) {
+      if (s.stereo.minDisparity != 0 || s.stereo.numDisparities < 32) continue;
+      const ScopedEnv sad("HOROPTER_OPENCL_SAD", shape);
+      SCOPED_TRACE(std::string(s.what) + ", SAD " + shape);
+      StereoFrontend ref(s.stereo, s.median, scalarBackend());
+      OpenClFrontend frontend(s.stereo, s.median, "opencl", 4);
+      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+      std::vector<OpenClFrontend::Ticket> tickets;
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
+        tickets.push_back(frontend.submit(pairs[i].left.view(), pairs[i].right.view(), r));
+      }
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
+        const Image& want = ref.computeDisparity(pairs[i].left.view(), pairs[i].right.view(), r);
+        EXPECT_TRUE(sameImage(want.view(), frontend.wait(tickets[i]).view())) << "frame " << i;
+      }
     }
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const SearchRange r = s.stereo.numDisparities == 64 ? ranges[i] : SearchRange{16, 16};
-      const Image& want = ref.computeDisparity(pairs[i].left.view(), pairs[i].right.view(), r);
-      EXPECT_TRUE(sameImage(want.view(), frontend.wait(tickets[i]).view())) << "frame " << i;
-    }
-  }
 }
 
 TEST(OpenClFrontend, ProfileNamesEveryStage) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(1);
-  OpenClFrontend frontend(StereoParams{}, MedianParams{}, "opencl", 1);
-  frontend.computeDisparity(pairs[0].left.view(), pairs[0].right.view());
-  std::vector<std::string> stages;
-  for (const OpenClStageTime& t : frontend.profile()) {
-    stages.push_back(t.stage);
-    EXPECT_GE(t.ms, 0.0) << t.stage;
+  for (const char* shape : kSadShapes) {
+    SCOPED_TRACE(shape);
+    const ScopedEnv sad("HOROPTER_OPENCL_SAD", shape);
+    OpenClFrontend frontend(StereoParams{}, MedianParams{}, "opencl", 1);
+    frontend.computeDisparity(pairs[0].left.view(), pairs[0].right.view());
+    std::vector<std::string> stages;
+    for (const OpenClStageTime& t : frontend.profile()) {
+      EXPECT_EQ(std::count(stages.begin(), stages.end(), t.stage), 0) << "twice: " << t.stage;
+      stages.push_back(t.stage);
+      EXPECT_GE(t.ms, 0.0) << t.stage;
+    }
+    std::vector<std::string> want = {"upload left",
+                                     "prefilter left",
+                                     "left-right check",
+                                     "download",
+                                     "speckle filter (CPU, " + cpuBackend().name + ")",
+                                     "median"};
+    if (std::string(shape) == "strip")
+      want.push_back("match");
+    else
+      want.insert(want.end(), {"match costs", "match decide", "match right winners"});
+    for (const std::string& stage : want)
+      EXPECT_NE(std::find(stages.begin(), stages.end(), stage), stages.end()) << stage;
   }
-  for (const std::string& stage :
-       {std::string("upload left"), std::string("prefilter left"), std::string("match"),
-        std::string("left-right check"), std::string("download"),
-        "speckle filter (CPU, " + cpuBackend().name + ")", std::string("median")})
-    EXPECT_NE(std::find(stages.begin(), stages.end(), stage), stages.end()) << stage;
+}
+
+// A cost volume too large for one allocation is filled band by band: the
+// same results, and each stage's time summed into one profile entry.
+TEST(OpenClFrontend, TiledMatcherInBandsOfRowsEqualsTheScalarFrontend) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(2);
+  const ScopedEnv sad("HOROPTER_OPENCL_SAD", "tiled");
+  for (const std::size_t bandBytes : {std::size_t{1}, std::size_t{200000}}) {
+    opencl::setTiledBandBytes(bandBytes);  // 1: one row per band
+    for (const Setting& s : settings()) {
+      SCOPED_TRACE(std::string(s.what) + ", bands of " + std::to_string(bandBytes) + " bytes");
+      const std::vector<TestImage> want = expected(s, pairs);
+      OpenClFrontend frontend(s.stereo, s.median, "opencl", 2);
+      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
+        EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+      }
+      std::vector<std::string> stages;
+      for (const OpenClStageTime& t : frontend.profile())
+        stages.push_back(t.stage);
+      EXPECT_EQ(std::count(stages.begin(), stages.end(), std::string("match costs")), 1);
+    }
+  }
+  opencl::setTiledBandBytes(0);
+}
+
+TEST(OpenClFrontend, BadSadShapeFallsBackWithTheReason) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(1);
+  const Setting s = settings()[1];
+  const std::vector<TestImage> want = expected(s, pairs);
+  const ScopedEnv sad("HOROPTER_OPENCL_SAD", "gpu");
+  OpenClFrontend frontend(s.stereo, s.median, "opencl");
+  EXPECT_TRUE(frontend.onCpu());
+  EXPECT_NE(frontend.fallbackReason().find("HOROPTER_OPENCL_SAD='gpu'"), std::string::npos)
+      << frontend.fallbackReason();
+  EXPECT_TRUE(
+      sameImage(want[0].view(),
+                frontend.computeDisparity(pairs[0].left.view(), pairs[0].right.view()).view()));
 }
 
 TEST(OpenClFrontend, BadDeviceNamesAreErrors) {
