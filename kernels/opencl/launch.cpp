@@ -206,6 +206,8 @@ void enqueueMatchStrip(cl_command_queue q, cl_kernel k, const DeviceDesc& device
 // 8 rows; fixed, so PoCL compiles sad_costs once.
 constexpr size_t kCostTileWidth = 32;
 constexpr size_t kCostTileHeight = 8;
+// Local memory sad_costs may take for its column sums.
+constexpr size_t kCostLocalBytes = 32 * 1024;
 // The most one band's cost volume may take (and the device's allocation
 // limit): 1280x720 with 128 disparities needs 0.47 GB, one band.
 constexpr size_t kMaxCostVolumeBytes = size_t{1} << 30;
@@ -239,9 +241,14 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
     const int yB = region.x0 < region.x1 ? std::max(yA, std::min(region.y1, b1)) : yA;
     if (yA < yB) {
       cl_kernel k = kernels.sadCosts.get();
+      // Planes per pass (sad_tiled.cl's SAD_TILED_PASS_PLANES at most): 4
+      // up to block 225, 3 past it, in 32 KB of local memory.
+      const size_t planeBytes =
+          (kCostTileWidth + 2 * static_cast<size_t>(radius)) * kCostTileHeight * 4;
+      const int perPass = static_cast<int>(std::clamp<size_t>(kCostLocalBytes / planeBytes, 1, 4));
       setArgs(k, left, right, texture, width, width, minD, numD, radius, region.x0, region.x1, yA,
-              yB, guard.step, guards, useTexture, costs,
-              LocalBytes{(kCostTileWidth + 2 * static_cast<size_t>(radius)) * kCostTileHeight * 4});
+              yB, guard.step, guards, useTexture, perPass, costs,
+              LocalBytes{planeBytes * static_cast<size_t>(perPass)});
       const size_t global[2] = {roundUp(static_cast<size_t>(region.x1 - region.x0), kCostTileWidth),
                                 roundUp(static_cast<size_t>(yB - yA), kCostTileHeight)};
       const size_t local[2] = {kCostTileWidth, kCostTileHeight};

@@ -5,11 +5,12 @@
 //   sad_match gives one work-item a strip of rows, which suits a CPU and
 //   starves a GPU. Here three kernels share a cost volume in global memory:
 //   - sad_costs: a 2-D NDRange over the region's pixels in fixed
-//     work-groups (launch.cpp: 32 x 8). For each plane, the group sums the
-//     window's height for its columns plus the window's margins into local
-//     memory (one value per column and row of the tile), then each
+//     work-groups (launch.cpp: 32 x 8). For each pass of perPass planes,
+//     the group sums the window's height for its columns plus the window's
+//     margins into local memory (one value per plane, column and row of the
+//     tile; a left pixel read once for the pass's planes), then each
 //     work-item sums the window's width from there and writes its pixel's
-//     cost. Planes: the range's disparities (minD + k, k < numD), the
+//     costs. Planes: the range's disparities (minD + k, k < numD), the
 //     guard's checked ones (minD - (n + 1) * guardStep, n < guardCount) and,
 //     when the texture test is on, the texture's window sum. A guard plane
 //     holds INT_MAX where the disparity does not count (x - g + radius >=
@@ -30,10 +31,14 @@
 //   Rows of [rowBegin, rowEnd) outside the region and columns outside
 //   [x0, x1) get the invalid markers from sad_decide and sad_right_winners.
 
+// The most planes one pass of sad_costs handles (perPass <= this): each left
+// pixel is read once for all of them.
+#define SAD_TILED_PASS_PLANES 4
+
 __kernel void sad_costs(__global const uchar* restrict left, __global const uchar* restrict right,
                         __global const uchar* restrict texture, int inStride, int width, int minD,
                         int numD, int radius, int x0, int x1, int yA, int yB, int guardStep,
-                        int guardCount, int useTexture, __global int* restrict costs,
+                        int guardCount, int useTexture, int perPass, __global int* restrict costs,
                         __local int* restrict vsum) {
   const int lx = get_local_id(0), ly = get_local_id(1);
   const int tileW = get_local_size(0);
@@ -41,41 +46,57 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
   const int x = bx + lx;
   const int y = yA + get_global_id(1);
   const int tw = tileW + 2 * radius;  // the tile's columns [bx - radius, bx + tileW + radius)
+  const int slab = get_local_size(1) * tw;  // one plane's column sums
   const int planes = numD + guardCount + useTexture;
   const int rowOk = y < yB;
-  __local int* restrict mine = vsum + ly * tw;
-  for (int p = 0; p < planes; ++p) {
-    const int kind = p < numD ? 0 : (p < numD + guardCount ? 1 : 2);  // range, guard, texture
-    const int d = kind == 0 ? minD + p : (kind == 1 ? minD - (p - numD + 1) * guardStep : 0);
+  for (int p0 = 0; p0 < planes; p0 += perPass) {
+    // Per plane of the pass: kind 0 range, 1 guard, 2 texture, 3 none.
+    int kind[SAD_TILED_PASS_PLANES], d[SAD_TILED_PASS_PLANES];
+#pragma unroll
+    for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+      const int p = p0 + q;
+      kind[q] = (q >= perPass || p >= planes) ? 3 : (p < numD ? 0 : (p < numD + guardCount ? 1 : 2));
+      d[q] = kind[q] == 0 ? minD + p : (kind[q] == 1 ? minD - (p - numD + 1) * guardStep : 0);
+    }
     if (rowOk) {
       for (int tx = lx; tx < tw; tx += tileW) {
         const int gx = bx - radius + tx;
-        int s = 0;
-        // Columns past the region's windows, or whose right pixel lies past
-        // the image (guard planes only), are never summed into a cost kept.
-        if (gx < x1 + radius && gx - d < width) {
-          const int top = (y - radius) * inStride;
-          if (kind == 2) {
-            __global const uchar* t = texture + top + gx;
-            for (int j = 0; j <= 2 * radius; ++j)
-              s += t[j * inStride];
-          } else {
-            __global const uchar* l = left + top + gx;
-            __global const uchar* r = right + top + gx - d;
-            for (int j = 0; j <= 2 * radius; ++j)
-              s += abs((int)l[j * inStride] - (int)r[j * inStride]);
+        int s[SAD_TILED_PASS_PLANES];
+        int use[SAD_TILED_PASS_PLANES];
+#pragma unroll
+        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+          s[q] = 0;
+          // Columns past the region's windows, or whose right pixel lies past
+          // the image (guard planes only), are never summed into a cost kept.
+          use[q] = kind[q] != 3 && gx < x1 + radius && gx - d[q] < width;
+        }
+        int at = (y - radius) * inStride + gx;
+        const int rowsIn = gx < x1 + radius ? 2 * radius + 1 : 0;  // none past the image
+        for (int j = 0; j < rowsIn; ++j, at += inStride) {
+          const int lv = left[at];
+#pragma unroll
+          for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+            if (use[q]) s[q] += kind[q] == 2 ? (int)texture[at] : abs(lv - (int)right[at - d[q]]);
           }
         }
-        mine[tx] = s;
+#pragma unroll
+        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+          if (q < perPass) vsum[q * slab + ly * tw + tx] = s[q];
+        }
       }
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     if (rowOk && x < x1) {
-      int c = 0;
-      for (int i = 0; i <= 2 * radius; ++i)
-        c += mine[lx + i];
-      if (kind == 1 && x - d + radius >= width) c = INT_MAX;
-      costs[((size_t)(y - yA) * planes + p) * width + x] = c;
+#pragma unroll
+      for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+        if (kind[q] == 3) continue;
+        __local const int* mine = vsum + q * slab + ly * tw + lx;
+        int c = 0;
+        for (int i = 0; i <= 2 * radius; ++i)
+          c += mine[i];
+        if (kind[q] == 1 && x - d[q] + radius >= width) c = INT_MAX;
+        costs[((size_t)(y - yA) * planes + p0 + q) * width + x] = c;
+      }
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }

@@ -601,7 +601,9 @@ void conformMatchBlocksGuarded(const Backend& backend) {
       cases.push_back({200, 15, p, {step, 3}, Pattern::Textured, 60, ratio != 0});
     }
   }
-  for (int blockSize : {17, 33}) {  // past the AVX2 bound: its scalar fallback
+  // 17, 33: past the AVX2 bound (its scalar fallback); 231: past the block
+  // (225) up to which the tiled OpenCL matcher costs 4 planes per pass.
+  for (int blockSize : {17, 33, 231}) {
     StereoParams p;
     p.minDisparity = 10;
     p.numDisparities = 16;
