@@ -44,11 +44,13 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
   const int tileW = get_local_size(0);
   const int bx = x0 + get_group_id(0) * tileW;
   const int x = bx + lx;
-  const int y = yA + get_global_id(1);
+  const int tileH = get_local_size(1);
+  const int by = yA + get_group_id(1) * tileH;
+  const int y = by + ly;
   const int tw = tileW + 2 * radius;  // the tile's columns [bx - radius, bx + tileW + radius)
-  const int slab = get_local_size(1) * tw;  // one plane's column sums
+  const int slab = tileH * tw;        // one plane's column sums, [row][column]
   const int planes = numD + guardCount + useTexture;
-  const int rowOk = y < yB;
+  const int lid = ly * tileW + lx, groupSize = tileW * tileH;
   for (int p0 = 0; p0 < planes; p0 += perPass) {
     // Per plane of the pass: kind 0 range, 1 guard, 2 texture, 3 none.
     int kind[SAD_TILED_PASS_PLANES], d[SAD_TILED_PASS_PLANES];
@@ -58,35 +60,38 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
       kind[q] = (q >= perPass || p >= planes) ? 3 : (p < numD ? 0 : (p < numD + guardCount ? 1 : 2));
       d[q] = kind[q] == 0 ? minD + p : (kind[q] == 1 ? minD - (p - numD + 1) * guardStep : 0);
     }
-    if (rowOk) {
-      for (int tx = lx; tx < tw; tx += tileW) {
-        const int gx = bx - radius + tx;
-        int s[SAD_TILED_PASS_PLANES];
-        int use[SAD_TILED_PASS_PLANES];
+    // The column sums, spread over the whole group (consecutive work-items
+    // take consecutive columns, whole warps go idle at the end).
+    for (int e = lid; e < slab; e += groupSize) {
+      const int ty = e / tw, tx = e - ty * tw;
+      const int gx = bx - radius + tx;
+      const int gy = by + ty;
+      int s[SAD_TILED_PASS_PLANES];
+      int use[SAD_TILED_PASS_PLANES];
+#pragma unroll
+      for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+        s[q] = 0;
+        // Columns past the region's windows, or whose right pixel lies past
+        // the image (guard planes only), are never summed into a cost kept.
+        use[q] = kind[q] != 3 && gx < x1 + radius && gx - d[q] < width;
+      }
+      int at = (gy - radius) * inStride + gx;
+      // None past the image's columns, or below the rows asked for.
+      const int rowsIn = gx < x1 + radius && gy < yB ? 2 * radius + 1 : 0;
+      for (int j = 0; j < rowsIn; ++j, at += inStride) {
+        const int lv = left[at];
 #pragma unroll
         for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
-          s[q] = 0;
-          // Columns past the region's windows, or whose right pixel lies past
-          // the image (guard planes only), are never summed into a cost kept.
-          use[q] = kind[q] != 3 && gx < x1 + radius && gx - d[q] < width;
+          if (use[q]) s[q] += kind[q] == 2 ? (int)texture[at] : abs(lv - (int)right[at - d[q]]);
         }
-        int at = (y - radius) * inStride + gx;
-        const int rowsIn = gx < x1 + radius ? 2 * radius + 1 : 0;  // none past the image
-        for (int j = 0; j < rowsIn; ++j, at += inStride) {
-          const int lv = left[at];
+      }
 #pragma unroll
-          for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
-            if (use[q]) s[q] += kind[q] == 2 ? (int)texture[at] : abs(lv - (int)right[at - d[q]]);
-          }
-        }
-#pragma unroll
-        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
-          if (q < perPass) vsum[q * slab + ly * tw + tx] = s[q];
-        }
+      for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+        if (q < perPass) vsum[q * slab + e] = s[q];
       }
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (rowOk && x < x1) {
+    if (y < yB && x < x1) {
 #pragma unroll
       for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
         if (kind[q] == 3) continue;
