@@ -17,9 +17,9 @@
 //     width: the window would leave the right image); no real cost reaches
 //     it (at most 255 * 255^2).
 //   - sad_decide: one work-item per output pixel (x, y) reads its pixel's
-//     planes (adjacent work-items read adjacent words of a plane): winner
-//     (strict <: the smallest d wins ties), texture, uniqueness, guard and
-//     the integer equiangular fit, as decidePixel in the reference.
+//     planes once (adjacent work-items read adjacent words of a plane):
+//     winner (strict <: the smallest d wins ties), texture, uniqueness, guard
+//     and the integer equiangular fit, as decidePixel in the reference.
 //   - sad_right_winners: one work-item per right pixel xr replays the
 //     reference's choice: the least C(xr + d, d) over the d whose left
 //     pixel lies in the region's columns (strict <, d increasing), then the
@@ -125,22 +125,37 @@ __kernel void sad_decide(__global const int* restrict costs, int width, int minD
     const int useTexture = textureThreshold > 0;
     const int planes = numD + guardCount + useTexture;
     __global const int* c = costs + (size_t)(y - yA) * planes * width + x;
+    // One pass over the range: the winner (strict <: the smallest d on
+    // ties), its neighbours' costs, and the least cost of the d with
+    // |d - best| > 1 (uniqueness). A new winner at k has every j <= k - 2
+    // outside its neighbourhood: their least is the prefix minimum to k - 2.
     int best = 0;
     int bestCost = c[0];
+    int cmCost = 0, cpCost = 0;  // C(best - 1), C(best + 1) where they exist
+    int outside = INT_MAX;       // least C(j), |j - best| > 1, j < k
+    int prefix1 = bestCost;      // least C(0 .. k - 1)
+    int prefix2 = INT_MAX;       // least C(0 .. k - 2)
+    int previous = bestCost;     // C(k - 1)
     for (int k = 1; k < numD; ++k) {
       const int v = c[(size_t)k * width];
       if (v < bestCost) {
         bestCost = v;
         best = k;
+        cmCost = previous;
+        outside = prefix2;
+      } else if (k == best + 1) {
+        cpCost = v;
+      } else {
+        outside = min(outside, v);
       }
+      prefix2 = prefix1;
+      prefix1 = min(prefix1, v);
+      previous = v;
     }
     int ok = !(useTexture && c[(size_t)(numD + guardCount) * width] < textureThreshold);
     const long c0 = bestCost;
     const long limit = c0 + c0 * uniquenessRatio / 100;
-    if (ok && uniquenessRatio > 0) {
-      for (int k = 0; k < numD && ok; ++k)
-        ok = !(abs(k - best) > 1 && (long)c[(size_t)k * width] <= limit);
-    }
+    if (ok && uniquenessRatio > 0) ok = !(outside != INT_MAX && (long)outside <= limit);
     if (ok && guardCount > 0) {
       int guardLeast = INT_MAX;  // INT_MAX: the plane does not count here
       for (int n = 0; n < guardCount; ++n)
@@ -148,8 +163,9 @@ __kernel void sad_decide(__global const int* restrict costs, int width, int minD
       ok = !(guardLeast != INT_MAX && (long)guardLeast <= limit);
     }
     if (ok) {
-      const long cm = c[(size_t)(best > 0 ? best - 1 : best + 1) * width];
-      const long cp = c[(size_t)(best < numD - 1 ? best + 1 : best - 1) * width];
+      // At the ends of the range the missing side mirrors the other one.
+      const long cm = best > 0 ? cmCost : cpCost;
+      const long cp = best < numD - 1 ? cpCost : cmCost;
       const long den = cm + cp - 2 * c0 + (cm > cp ? cm - cp : cp - cm);
       const long off = den > 0 ? (cm - cp) * 256 / den : 0;
       const long d = (long)(minD + best);
