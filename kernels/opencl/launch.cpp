@@ -203,9 +203,19 @@ void enqueueMatchStrip(cl_command_queue q, cl_kernel k, const DeviceDesc& device
 }
 
 // The cost volume's work-group: 32 columns (a warp's consecutive words) by
-// 8 rows; fixed, so PoCL compiles sad_costs once.
+// 8 rows (fewer where the device allows less than 256 work-items for
+// sad_costs); fixed, so PoCL compiles sad_costs once.
 constexpr size_t kCostTileWidth = 32;
 constexpr size_t kCostTileHeight = 8;
+
+size_t costTileHeight(cl_kernel k, const DeviceDesc& device) {
+  size_t most = 0;
+  if (clGetKernelWorkGroupInfo(k, device.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most,
+                               nullptr) != CL_SUCCESS ||
+      most == 0)
+    return kCostTileHeight;
+  return std::clamp<size_t>(most / kCostTileWidth, 1, kCostTileHeight);
+}
 // Local memory sad_costs may take for its column sums.
 constexpr size_t kCostLocalBytes = 32 * 1024;
 // The most one band's cost volume may take (and the device's allocation
@@ -241,17 +251,17 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
     const int yB = region.x0 < region.x1 ? std::max(yA, std::min(region.y1, b1)) : yA;
     if (yA < yB) {
       cl_kernel k = kernels.sadCosts.get();
+      const size_t tileHeight = costTileHeight(k, device);
       // Planes per pass (sad_tiled.cl's SAD_TILED_PASS_PLANES at most): 4
       // up to block 225, 3 past it, in 32 KB of local memory.
-      const size_t planeBytes =
-          (kCostTileWidth + 2 * static_cast<size_t>(radius)) * kCostTileHeight * 4;
+      const size_t planeBytes = (kCostTileWidth + 2 * static_cast<size_t>(radius)) * tileHeight * 4;
       const int perPass = static_cast<int>(std::clamp<size_t>(kCostLocalBytes / planeBytes, 1, 4));
       setArgs(k, left, right, texture, width, width, minD, numD, radius, region.x0, region.x1, yA,
               yB, guard.step, guards, useTexture, perPass, costs,
               LocalBytes{planeBytes * static_cast<size_t>(perPass)});
       const size_t global[2] = {roundUp(static_cast<size_t>(region.x1 - region.x0), kCostTileWidth),
-                                roundUp(static_cast<size_t>(yB - yA), kCostTileHeight)};
-      const size_t local[2] = {kCostTileWidth, kCostTileHeight};
+                                roundUp(static_cast<size_t>(yB - yA), tileHeight)};
+      const size_t local[2] = {kCostTileWidth, tileHeight};
       check(clEnqueueNDRangeKernel(q, k, 2, nullptr, global, local, 0, nullptr,
                                    eventFor(events, "match costs")),
             "running the matcher's cost volume");
