@@ -85,7 +85,6 @@ Kernels::Kernels(Device& device)
       sad(createKernel(device, "sad_match")),
       sadCosts(createKernel(device, "sad_costs")),
       sadDecide(createKernel(device, "sad_decide")),
-      sadRightWinners(createKernel(device, "sad_right_winners")),
       lrCheck(createKernel(device, "lr_check")),
       median(createKernel(device, "median_filter")),
       mask(createKernel(device, "horopter_mask")) {}
@@ -269,14 +268,10 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
     const RowRange band{b0, b1};
     cl_kernel decide = kernels.sadDecide.get();
     setArgs(decide, costs, width, minD, numD, params.textureThreshold, params.uniquenessRatio,
-            region.x0, region.x1, yA, yB, b0, b1, guards, disparity, width);
+            region.x0, region.x1, yA, yB, b0, b1, guard.step, guards, disparity, winnerRight,
+            width);
     enqueuePerPixel(q, decide, width, band, eventFor(events, "match decide"),
                     "running the matcher's decisions");
-    cl_kernel winners = kernels.sadRightWinners.get();
-    setArgs(winners, costs, width, minD, numD, useTexture, region.x0, region.x1, yA, yB, b0, b1,
-            guard.step, guards, winnerRight, width);
-    enqueuePerPixel(q, winners, width, band, eventFor(events, "match right winners"),
-                    "running the matcher's right winners");
   }
 }
 

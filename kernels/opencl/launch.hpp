@@ -51,8 +51,7 @@ class Events {
 // The kernels of a device's program; one set per thread that enqueues.
 struct Kernels {
   explicit Kernels(Device& device);
-  KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, sadRightWinners, lrCheck,
-      median, mask;
+  KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, lrCheck, median, mask;
 };
 
 // Where a launch's profiling events go: a slot for the event of the stage
@@ -92,9 +91,9 @@ const char* sadShapeName(SadShape shape);
 struct SadScratch {
   Buffer colsum, colTex, rightCost, rightD, guardColumns, costs;
 };
-// Events: "match" (Strip), or "match costs", "match decide" and "match
-// right winners" (Tiled; once per band of rows when the cost volume of all
-// the rows would pass the device's allocation limit).
+// Events: "match" (Strip), or "match costs" and "match decide" (Tiled; once
+// per band of rows when the cost volume of all the rows would pass the
+// device's allocation limit).
 void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
                   cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
                   int height, const StereoParams& params, const BelowRangeGuard& guard,

@@ -3,7 +3,7 @@
 //
 // Strategy
 //   sad_match gives one work-item a strip of rows, which suits a CPU and
-//   starves a GPU. Here three kernels share a cost volume in global memory:
+//   starves a GPU. Here two kernels share a cost volume in global memory:
 //   - sad_costs: a 2-D NDRange over the region's pixels in fixed
 //     work-groups (launch.cpp: 32 x 8). For each pass of perPass planes,
 //     the group sums the window's height for its columns plus the window's
@@ -16,20 +16,23 @@
 //     holds INT_MAX where the disparity does not count (x - g + radius >=
 //     width: the window would leave the right image); no real cost reaches
 //     it (at most 255 * 255^2).
-//   - sad_decide: one work-item per output pixel (x, y) reads its pixel's
-//     planes once (adjacent work-items read adjacent words of a plane):
-//     winner (strict <: the smallest d wins ties), texture, uniqueness, guard
-//     and the integer equiangular fit, as decidePixel in the reference.
-//   - sad_right_winners: one work-item per right pixel xr replays the
-//     reference's choice: the least C(xr + d, d) over the d whose left
-//     pixel lies in the region's columns (strict <, d increasing), then the
-//     guard's candidates in increasing g (strict <), which win when <= the
-//     range's least, written as min(g, minD - 2).
+//   - sad_decide: one work-item per position (x, y) of the rows asked for,
+//     for both views, so that the two read a row of the volume while it is
+//     in the cache (one pass over the volume from memory, not two):
+//     - sad_tiled_left: the left pixel x reads its planes once (adjacent
+//       work-items read adjacent words of a plane): winner (strict <: the
+//       smallest d wins ties), texture, uniqueness, guard and the integer
+//       equiangular fit, as decidePixel in the reference.
+//     - sad_tiled_right: the right pixel x replays the reference's choice:
+//       the least C(x + d, d) over the d whose left pixel lies in the
+//       region's columns (strict <, d increasing), then the guard's
+//       candidates in increasing g (strict <), which win when <= the
+//       range's least, written as min(g, minD - 2).
 //   Volume layout: costs[((y - yA) * planes + p) * width + x], yA the first
 //   region row of the call's rows: plane-major within a row, so every
 //   kernel reads and writes consecutive x in consecutive work-items.
 //   Rows of [rowBegin, rowEnd) outside the region and columns outside
-//   [x0, x1) get the invalid markers from sad_decide and sad_right_winners.
+//   [x0, x1) get the invalid markers from sad_decide.
 
 // The most planes one pass of sad_costs handles (perPass <= this): each left
 // pixel is read once for all of them.
@@ -113,13 +116,10 @@ long sad_tiled_floor_div16(long v) {
   return q;
 }
 
-__kernel void sad_decide(__global const int* restrict costs, int width, int minD, int numD,
-                         int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
-                         int rowBegin, int rowEnd, int guardCount, __global short* restrict disparity,
-                         int outStride) {
-  const int x = get_global_id(0);
-  const int y = rowBegin + get_global_id(1);
-  if (x >= width || y >= rowEnd) return;
+// The left pixel (x, y)'s disparity in 1/16 px, or the invalid marker.
+short sad_tiled_left(__global const int* restrict costs, int width, int minD, int numD,
+                     int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
+                     int guardCount, int x, int y) {
   short result = (short)((minD - 1) * 16);
   if (y >= yA && y < yB && x >= x0 && x < x1) {
     const int useTexture = textureThreshold > 0;
@@ -172,16 +172,13 @@ __kernel void sad_decide(__global const int* restrict costs, int width, int minD
       result = (short)sad_tiled_floor_div16(d * 256 + off + 8);
     }
   }
-  disparity[y * outStride + x] = result;
+  return result;
 }
 
-__kernel void sad_right_winners(__global const int* restrict costs, int width, int minD, int numD,
-                                int useTexture, int x0, int x1, int yA, int yB, int rowBegin,
-                                int rowEnd, int guardStep, int guardCount,
-                                __global short* restrict winnerRight, int outStride) {
-  const int xr = get_global_id(0);
-  const int y = rowBegin + get_global_id(1);
-  if (xr >= width || y >= rowEnd) return;
+// The right pixel (xr, y)'s winner, or minD - 1 where no d qualifies.
+short sad_tiled_right(__global const int* restrict costs, int width, int minD, int numD,
+                      int useTexture, int x0, int x1, int yA, int yB, int guardStep,
+                      int guardCount, int xr, int y) {
   const int maxD = minD + numD - 1;
   short result = (short)(minD - 1);
   if (y >= yA && y < yB && xr >= x0 - maxD && xr < x1 - minD) {
@@ -214,5 +211,22 @@ __kernel void sad_right_winners(__global const int* restrict costs, int width, i
     }
     if (least <= best) result = (short)min(leastD, minD - 2);
   }
-  winnerRight[y * outStride + xr] = result;
+  return result;
+}
+
+// Both views' results of one row position: the left pixel x and the right
+// pixel x read the same row of the volume while it is in the cache.
+__kernel void sad_decide(__global const int* restrict costs, int width, int minD, int numD,
+                         int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
+                         int rowBegin, int rowEnd, int guardStep, int guardCount,
+                         __global short* restrict disparity, __global short* restrict winnerRight,
+                         int outStride) {
+  const int x = get_global_id(0);
+  const int y = rowBegin + get_global_id(1);
+  if (x >= width || y >= rowEnd) return;
+  disparity[y * outStride + x] = sad_tiled_left(costs, width, minD, numD, textureThreshold,
+                                                uniquenessRatio, x0, x1, yA, yB, guardCount, x, y);
+  winnerRight[y * outStride + x] =
+      sad_tiled_right(costs, width, minD, numD, textureThreshold > 0, x0, x1, yA, yB, guardStep,
+                      guardCount, x, y);
 }
