@@ -232,7 +232,11 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
   const int guards = guardCount(params, guard);
   const int useTexture = params.textureThreshold > 0 ? 1 : 0;
   const int planes = params.numDisparities + guards + useTexture;
-  const size_t rowBytes = static_cast<size_t>(planes) * static_cast<size_t>(width) * 4;
+  // uint16 costs where every cost (at most 255 * block^2, the texture's sum
+  // too) stays below 0xFFFF, sad_tiled.cl's "does not count": blocks <= 15.
+  const int narrow = 255 * params.blockSize * params.blockSize < 0xFFFF ? 1 : 0;
+  const size_t rowBytes =
+      static_cast<size_t>(planes) * static_cast<size_t>(width) * (narrow ? 2 : 4);
   size_t cap = kMaxCostVolumeBytes;
   if (device.maxAlloc > 0) cap = std::min<size_t>(cap, device.maxAlloc);
   if (g_bandBytes > 0) cap = g_bandBytes;
@@ -256,7 +260,7 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
       const size_t planeBytes = (kCostTileWidth + 2 * static_cast<size_t>(radius)) * tileHeight * 4;
       const int perPass = static_cast<int>(std::clamp<size_t>(kCostLocalBytes / planeBytes, 1, 4));
       setArgs(k, left, right, texture, width, width, minD, numD, radius, region.x0, region.x1, yA,
-              yB, guard.step, guards, useTexture, perPass, costs,
+              yB, guard.step, guards, useTexture, perPass, narrow, costs,
               LocalBytes{planeBytes * static_cast<size_t>(perPass)});
       const size_t global[2] = {roundUp(static_cast<size_t>(region.x1 - region.x0), kCostTileWidth),
                                 roundUp(static_cast<size_t>(yB - yA), tileHeight)};
@@ -267,9 +271,9 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
     }
     const RowRange band{b0, b1};
     cl_kernel decide = kernels.sadDecide.get();
-    setArgs(decide, costs, width, minD, numD, params.textureThreshold, params.uniquenessRatio,
-            region.x0, region.x1, yA, yB, b0, b1, guard.step, guards, disparity, winnerRight,
-            width);
+    setArgs(decide, costs, narrow, width, minD, numD, params.textureThreshold,
+            params.uniquenessRatio, region.x0, region.x1, yA, yB, b0, b1, guard.step, guards,
+            disparity, winnerRight, width);
     enqueuePerPixel(q, decide, width, band, eventFor(events, "match decide"),
                     "running the matcher's decisions");
   }

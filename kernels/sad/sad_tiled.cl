@@ -28,11 +28,31 @@
 //       region's columns (strict <, d increasing), then the guard's
 //       candidates in increasing g (strict <), which win when <= the
 //       range's least, written as min(g, minD - 2).
-//   Volume layout: costs[((y - yA) * planes + p) * width + x], yA the first
+//   Volume layout: costs[((y - yA) * planes + p) * width + x] (uint16 for
+//   blocks up to 15, whose costs fit, halving the volume's traffic; int32
+//   past them: sad_tiled_cost, sad_tiled_store), yA the first
 //   region row of the call's rows: plane-major within a row, so every
 //   kernel reads and writes consecutive x in consecutive work-items.
 //   Rows of [rowBegin, rowEnd) outside the region and columns outside
 //   [x0, x1) get the invalid markers from sad_decide.
+
+// A cost of the volume: int32, or uint16 when `narrow` (blocks up to 15,
+// where every cost is at most 255 * 15^2 < 0xFFFF), 0xFFFF standing for
+// INT_MAX (a guard plane's "does not count").
+int sad_tiled_cost(__global const int* restrict costs, size_t i, int narrow) {
+  if (narrow) {
+    const int v = ((__global const ushort*)costs)[i];
+    return v == 0xFFFF ? INT_MAX : v;
+  }
+  return costs[i];
+}
+
+void sad_tiled_store(__global int* restrict costs, size_t i, int narrow, int c) {
+  if (narrow)
+    ((__global ushort*)costs)[i] = (ushort)min(c, 0xFFFF);
+  else
+    costs[i] = c;
+}
 
 // The most planes one pass of sad_costs handles (perPass <= this): each left
 // pixel is read once for all of them.
@@ -41,8 +61,8 @@
 __kernel void sad_costs(__global const uchar* restrict left, __global const uchar* restrict right,
                         __global const uchar* restrict texture, int inStride, int width, int minD,
                         int numD, int radius, int x0, int x1, int yA, int yB, int guardStep,
-                        int guardCount, int useTexture, int perPass, __global int* restrict costs,
-                        __local int* restrict vsum) {
+                        int guardCount, int useTexture, int perPass, int narrow,
+                        __global int* restrict costs, __local int* restrict vsum) {
   const int lx = get_local_id(0), ly = get_local_id(1);
   const int tileW = get_local_size(0);
   const int bx = x0 + get_group_id(0) * tileW;
@@ -103,7 +123,7 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
         for (int i = 0; i <= 2 * radius; ++i)
           c += mine[i];
         if (kind[q] == 1 && x - d[q] + radius >= width) c = INT_MAX;
-        costs[((size_t)(y - yA) * planes + p0 + q) * width + x] = c;
+        sad_tiled_store(costs, ((size_t)(y - yA) * planes + p0 + q) * width + x, narrow, c);
       }
     }
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -117,27 +137,27 @@ long sad_tiled_floor_div16(long v) {
 }
 
 // The left pixel (x, y)'s disparity in 1/16 px, or the invalid marker.
-short sad_tiled_left(__global const int* restrict costs, int width, int minD, int numD,
-                     int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
-                     int guardCount, int x, int y) {
+short sad_tiled_left(__global const int* restrict costs, int narrow, int width, int minD,
+                     int numD, int textureThreshold, int uniquenessRatio, int x0, int x1, int yA,
+                     int yB, int guardCount, int x, int y) {
   short result = (short)((minD - 1) * 16);
   if (y >= yA && y < yB && x >= x0 && x < x1) {
     const int useTexture = textureThreshold > 0;
     const int planes = numD + guardCount + useTexture;
-    __global const int* c = costs + (size_t)(y - yA) * planes * width + x;
+    const size_t c = (size_t)(y - yA) * planes * width + x;  // plane p at c + p * width
     // One pass over the range: the winner (strict <: the smallest d on
     // ties), its neighbours' costs, and the least cost of the d with
     // |d - best| > 1 (uniqueness). A new winner at k has every j <= k - 2
     // outside its neighbourhood: their least is the prefix minimum to k - 2.
     int best = 0;
-    int bestCost = c[0];
+    int bestCost = sad_tiled_cost(costs, c, narrow);
     int cmCost = 0, cpCost = 0;  // C(best - 1), C(best + 1) where they exist
     int outside = INT_MAX;       // least C(j), |j - best| > 1, j < k
     int prefix1 = bestCost;      // least C(0 .. k - 1)
     int prefix2 = INT_MAX;       // least C(0 .. k - 2)
     int previous = bestCost;     // C(k - 1)
     for (int k = 1; k < numD; ++k) {
-      const int v = c[(size_t)k * width];
+      const int v = sad_tiled_cost(costs, c + (size_t)k * width, narrow);
       if (v < bestCost) {
         bestCost = v;
         best = k;
@@ -152,14 +172,16 @@ short sad_tiled_left(__global const int* restrict costs, int width, int minD, in
       prefix1 = min(prefix1, v);
       previous = v;
     }
-    int ok = !(useTexture && c[(size_t)(numD + guardCount) * width] < textureThreshold);
+    int ok = !(useTexture &&
+               sad_tiled_cost(costs, c + (size_t)(numD + guardCount) * width, narrow) <
+                   textureThreshold);
     const long c0 = bestCost;
     const long limit = c0 + c0 * uniquenessRatio / 100;
     if (ok && uniquenessRatio > 0) ok = !(outside != INT_MAX && (long)outside <= limit);
     if (ok && guardCount > 0) {
       int guardLeast = INT_MAX;  // INT_MAX: the plane does not count here
       for (int n = 0; n < guardCount; ++n)
-        guardLeast = min(guardLeast, c[(size_t)(numD + n) * width]);
+        guardLeast = min(guardLeast, sad_tiled_cost(costs, c + (size_t)(numD + n) * width, narrow));
       ok = !(guardLeast != INT_MAX && (long)guardLeast <= limit);
     }
     if (ok) {
@@ -176,21 +198,21 @@ short sad_tiled_left(__global const int* restrict costs, int width, int minD, in
 }
 
 // The right pixel (xr, y)'s winner, or minD - 1 where no d qualifies.
-short sad_tiled_right(__global const int* restrict costs, int width, int minD, int numD,
-                      int useTexture, int x0, int x1, int yA, int yB, int guardStep,
+short sad_tiled_right(__global const int* restrict costs, int narrow, int width, int minD,
+                      int numD, int useTexture, int x0, int x1, int yA, int yB, int guardStep,
                       int guardCount, int xr, int y) {
   const int maxD = minD + numD - 1;
   short result = (short)(minD - 1);
   if (y >= yA && y < yB && xr >= x0 - maxD && xr < x1 - minD) {
     const int planes = numD + guardCount + useTexture;
-    __global const int* c = costs + (size_t)(y - yA) * planes * width;
+    const size_t c = (size_t)(y - yA) * planes * width;  // plane p at c + p * width
     // The d whose left pixel xr + d lies in [x0, x1): never empty here.
     const int kLo = max(0, x0 - xr - minD);
     const int kHi = min(numD - 1, x1 - 1 - xr - minD);
     int best = INT_MAX;
     int bestK = kLo;
     for (int k = kLo; k <= kHi; ++k) {
-      const int v = c[(size_t)k * width + xr + minD + k];
+      const int v = sad_tiled_cost(costs, c + (size_t)k * width + xr + minD + k, narrow);
       if (v < best) {
         best = v;
         bestK = k;
@@ -203,7 +225,7 @@ short sad_tiled_right(__global const int* restrict costs, int width, int minD, i
       const int g = minD - (n + 1) * guardStep;
       const int x = xr + g;
       if (x < x0 || x >= x1) continue;
-      const int v = c[(size_t)(numD + n) * width + x];
+      const int v = sad_tiled_cost(costs, c + (size_t)(numD + n) * width + x, narrow);
       if (v < least) {
         least = v;
         leastD = g;
@@ -216,7 +238,8 @@ short sad_tiled_right(__global const int* restrict costs, int width, int minD, i
 
 // Both views' results of one row position: the left pixel x and the right
 // pixel x read the same row of the volume while it is in the cache.
-__kernel void sad_decide(__global const int* restrict costs, int width, int minD, int numD,
+__kernel void sad_decide(__global const int* restrict costs, int narrow, int width, int minD,
+                         int numD,
                          int textureThreshold, int uniquenessRatio, int x0, int x1, int yA, int yB,
                          int rowBegin, int rowEnd, int guardStep, int guardCount,
                          __global short* restrict disparity, __global short* restrict winnerRight,
@@ -224,9 +247,10 @@ __kernel void sad_decide(__global const int* restrict costs, int width, int minD
   const int x = get_global_id(0);
   const int y = rowBegin + get_global_id(1);
   if (x >= width || y >= rowEnd) return;
-  disparity[y * outStride + x] = sad_tiled_left(costs, width, minD, numD, textureThreshold,
-                                                uniquenessRatio, x0, x1, yA, yB, guardCount, x, y);
+  disparity[y * outStride + x] =
+      sad_tiled_left(costs, narrow, width, minD, numD, textureThreshold, uniquenessRatio, x0, x1,
+                     yA, yB, guardCount, x, y);
   winnerRight[y * outStride + x] =
-      sad_tiled_right(costs, width, minD, numD, textureThreshold > 0, x0, x1, yA, yB, guardStep,
-                      guardCount, x, y);
+      sad_tiled_right(costs, narrow, width, minD, numD, textureThreshold > 0, x0, x1, yA, yB,
+                      guardStep, guardCount, x, y);
 }
