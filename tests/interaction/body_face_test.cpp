@@ -32,9 +32,9 @@ TEST(BodyFace, BelowTheHeadAtItsDepthIsOnTheBody) {
   const DetectorOptions o;
   const double w = kHead.width;
   const auto at = [&](double dx, double dy, float disparity) {
-    return face({static_cast<float>(kHead.centre.x + dx * w),
-                 static_cast<float>(kHead.centre.y + dy * w)},
-                60, 160, disparity);
+    return face(
+        {static_cast<float>(kHead.centre.x + dx * w), static_cast<float>(kHead.centre.y + dy * w)},
+        60, 160, disparity);
   };
   EXPECT_TRUE(belowAtBodyDepth(at(0, 2.5, 46), kHead, o));
   EXPECT_TRUE(belowAtBodyDepth(at(-1.4, 1.1, 40), kHead, o));  // within 15 % of the depth
