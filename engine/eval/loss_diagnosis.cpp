@@ -174,6 +174,10 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
       if (f.detections)
         for (const FaceDetection& face : f.detections->faces)
           std::fprintf(log, " face-luma %.0f", face.skinLuma);
+      if (f.detections)
+        for (const FaceDetection& face : f.detections->bodyFaces)
+          std::fprintf(log, " body-face (%.0f, %.0f) w%.0f y%.0f d%.1f", face.centre.x,
+                       face.centre.y, face.width, face.skinLuma, face.disparityPx);
       std::fprintf(log, " | hands");
       if (f.detections)
         for (const HandDetection& d : f.detections->hands)

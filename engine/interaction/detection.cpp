@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "body_face.hpp"
 #include "face_search.hpp"
 #include "horopter/core/error.hpp"
 
@@ -16,6 +17,10 @@ const char* detectionScopeName(DetectionScope scope) {
   return scope == DetectionScope::HoropterRegion ? "horopter-region" : "full-image";
 }
 
+namespace {
+constexpr int kNoHead = 1 << 20;  // frames since the last head, when there was none
+}  // namespace
+
 struct Detector::Impl {
   explicit Impl(const DetectorOptions& options) : faces(options), acquiring(options) {
     acquiring.faceScale = options.acquisitionFaceScale;
@@ -24,7 +29,9 @@ struct Detector::Impl {
   DetectorOptions acquiring;  // the options with the acquisition's face scale
   bool facesFound = false;    // in the previous frame
   cv::Mat skin, grown, grey, bright, labels, stats, centroids, distance;
-  float faceLuma = 0;  // the skin's grey level in the last face found (0: none yet)
+  float faceLuma = 0;                // the skin's grey level in the last head found (0: none yet)
+  int sinceHead = kNoHead;           // frames since that head
+  std::vector<std::int16_t> depths;  // scratch
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
 };
 
@@ -75,6 +82,20 @@ std::span<const NumberOption<DetectorOptions>> detectorOptions() {
       {"minSkinLumaOfFace", "--min-skin-luma", "", 0, 4,
        "hand skin darker than this fraction of the face's skin is not skin (0: off)",
        &O::minSkinLumaOfFace},
+      {"bodyFaceBelowFaces", "--body-face-below", "face widths", 0, 10,
+       "a face whose centre lies this far below the followed head's, at its depth, is on its "
+       "body: no face (0: off)",
+       &O::bodyFaceBelowFaces},
+      {"bodyFaceSideFaces", "--body-face-side", "face widths", 0, 10,
+       "... within this distance of the head's vertical", &O::bodyFaceSideFaces},
+      {"bodyFaceDepthFraction", "--body-face-depth", "", 0, 1,
+       "... at a disparity within this fraction of the head's", &O::bodyFaceDepthFraction},
+      {"bodyFaceDarkFraction", "--body-face-dark", "", 0, 1,
+       "a face whose skin is darker than this fraction of the followed head's is on its body: "
+       "no face (0: off)",
+       &O::bodyFaceDarkFraction},
+      {"bodyFaceMemoryFrames", "--body-face-memory", "frames", 0, 1000,
+       "... of the last head found within this many frames, too", &O::bodyFaceMemoryFrames},
   };
   return table;
 }
@@ -159,13 +180,27 @@ Detections Detector::detect(const StereoFrame& frame) {
         cv::Rect(0, 0, roi.width, roi.height);
     if (!centre.empty() && cv::countNonZero(m.skin(centre)) > 0)
       f.skinLuma = static_cast<float>(cv::mean(m.grey(centre), m.skin(centre))[0]);
+    if (haveDisparity && !centre.empty())
+      f.disparityPx = static_cast<float>(
+          detail::medianDisparity(frame.disparity, cv::Mat(), centre + roi.tl(), 2, m.depths));
   }
+  // The head the detector follows gives the skin's reference luma; a face
+  // on its body (or much darker than the last head's, in a frame that
+  // missed the head) is no face (body_face.hpp).
+  const float remembered = m.sinceHead <= o.bodyFaceMemoryFrames ? m.faceLuma : 0;
+  const FaceDetection* head = detail::followedHead(d.faces, region, remembered, o);
+  const float headLuma = head ? head->skinLuma : 0;
+  std::vector<FaceDetection> kept;
+  for (const FaceDetection& f : d.faces)
+    ((head && detail::faceOnTheBody(f, *head, o)) || detail::muchDarkerThanHead(f, remembered, o)
+         ? d.bodyFaces
+         : kept)
+        .push_back(f);
+  d.faces = std::move(kept);  // `head` dangles from here
+  if (headLuma > 0) m.faceLuma = headLuma;
+  m.sinceHead = headLuma > 0 ? 0 : std::min(m.sinceHead + 1, kNoHead);
   // Skin darker than a fraction of the face's: cloth whose chroma is
   // skin's, which joins a hand to its sleeve into one blob off the hand.
-  const FaceDetection* lit = nullptr;
-  for (const FaceDetection& f : d.faces)
-    if (f.skinLuma > 0 && (f.insideZone || !region) && (!lit || f.width > lit->width)) lit = &f;
-  if (lit) m.faceLuma = lit->skinLuma;
   if (o.minSkinLumaOfFace > 0 && m.faceLuma > 0) {
     cv::compare(m.grey, o.minSkinLumaOfFace * m.faceLuma, m.bright, cv::CMP_GE);
     cv::bitwise_and(m.skin, m.bright, m.skin);

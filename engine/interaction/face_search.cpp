@@ -12,8 +12,6 @@
 
 namespace horopter::detail {
 
-namespace {
-
 // The median valid disparity (px) in `box`, where `mask` (if any) is set;
 // 0 when none.
 double medianDisparity(const cv::Mat& disparity, const cv::Mat& mask, cv::Rect box, int step,
@@ -31,6 +29,8 @@ double medianDisparity(const cv::Mat& disparity, const cv::Mat& mask, cv::Rect b
   std::nth_element(scratch.begin(), mid, scratch.end());
   return *mid / 16.0;
 }
+
+namespace {
 
 constexpr std::size_t kWidthSamples = 15;  // faces remembered for k
 constexpr std::size_t kMinWidthSamples = 3;

@@ -73,4 +73,10 @@ class FaceSearch {
 // The fraction of mask pixels in the central half of a face box.
 double zoneCover(const cv::Mat& mask, const cv::Rect& box);
 
+// The median valid disparity (px) in `box` of a CV_16SC1 disparity map
+// (1/16 px), sampled every `step` pixels where `mask` (if not empty) is set;
+// 0 when none. `scratch` is reused.
+double medianDisparity(const cv::Mat& disparity, const cv::Mat& mask, cv::Rect box, int step,
+                       std::vector<std::int16_t>& scratch);
+
 }  // namespace horopter::detail

@@ -118,6 +118,23 @@ struct HOROPTER_API DetectorOptions {
   // a hand to its sleeve into one blob whose centroid is off the hand
   // (tuning seed 10053, a brown shirt).
   double minSkinLumaOfFace = 0.5;
+  // Faces on the body (tuning seed 10486: the cascade found a "face" on a
+  // shirt of skin's chroma, 2.5 face widths under the head at the torso's
+  // depth, with half the face's grey level). The face the detector follows
+  // (the largest in the zone that is on no other's body) gives the skin's
+  // reference luma above; a face on its body is no face: it goes to
+  // Detections::bodyFaces, with no face-and-neck cut, no reference luma and
+  // no election. On the body: its centre at least bodyFaceBelowFaces head
+  // widths below the head's (0: this half off), within bodyFaceSideFaces
+  // of its vertical, at a disparity within bodyFaceDepthFraction of the
+  // head's; or its skin darker than bodyFaceDarkFraction of the head's (0:
+  // this half off), which holds against the last head found within
+  // bodyFaceMemoryFrames frames too (a frame that missed the real face).
+  double bodyFaceBelowFaces = 1.0;
+  double bodyFaceSideFaces = 1.5;
+  double bodyFaceDepthFraction = 0.15;
+  double bodyFaceDarkFraction = 0.7;
+  int bodyFaceMemoryFrames = 15;
   int openPx = 5;          // morphological opening of the skin mask (removes speckle, thin strips)
   int closePx = 7;         // closing (joins a hand's pieces)
   int minHandAreaPx = 40;  // smallest skin component kept as a hand candidate
@@ -136,6 +153,8 @@ struct HOROPTER_API FaceDetection {
   // The mean grey level of the skin in the face's central half (0: none):
   // the subject's skin under this light, which the hands share.
   float skinLuma = 0;
+  // Region: the median valid disparity in its central half, px (0: none).
+  float disparityPx = 0;
 };
 
 struct HOROPTER_API HandDetection {
@@ -174,6 +193,9 @@ HOROPTER_API BodyTriangle bodyTriangle(cv::Point2f head, cv::Point2f leftHand,
 struct HOROPTER_API Detections {
   DetectionScope scope = DetectionScope::HoropterRegion;
   std::vector<FaceDetection> faces;  // sorted by position (deterministic)
+  // Faces the cascade found on the followed head's body (DetectorOptions::
+  // bodyFace*): no faces, kept apart for diagnosis.
+  std::vector<FaceDetection> bodyFaces;
   std::vector<HandDetection> hands;  // skin components that are not faces, largest first
   // The largest in-zone face with the nearest hand candidate on each side
   // (the person's left hand appears on the image's right).
