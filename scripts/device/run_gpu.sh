@@ -4,13 +4,15 @@
 # builds; scripts/device/README.md). Writes under
 # $OUT (default /tmp/gpuout): run_gpu.log, conformance.xml, opencl_tests.xml,
 # bench.json. Every step prints a header and its exit code; none aborts the rest.
-# Limits (seconds) can be changed: T_CONF T_OCL T_BENCH, MIN_TIME (bench).
+# Limits (seconds) can be changed: T_CONF T_OCL T_BENCH T_BENCH_STRIP, MIN_TIME
+# (bench).
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/../.." || exit 1
 G=$PWD/.gpu
 OUT=${OUT:-/tmp/gpuout}
 mkdir -p "$OUT"
 T_CONF=${T_CONF:-170}
+T_BENCH_STRIP=${T_BENCH_STRIP:-60}
 T_OCL=${T_OCL:-60}
 T_BENCH=${T_BENCH:-150}
 MIN_TIME=${MIN_TIME:-0.3}
@@ -185,6 +187,14 @@ main() {
   step "bench (min_time $MIN_TIME s)" "$T_BENCH" $R "$G/bin/horopter_bench" \
     --benchmark_filter="$F" --benchmark_min_time="$MIN_TIME" \
     --benchmark_out="$OUT/bench.json" --benchmark_out_format=json
+  # The OpenCL rows again with the CPU-shaped match kernel, for the two
+  # shapes in one run (`auto` above takes the tiled one on a GPU).
+  local FS="^(disparity/opencl[^/]*/(640x480/d64|1280x720/d128)/w9/kernels"
+  FS+="|(disparity|frontend)/opencl/$S/t1)(/real_time|/manual_time)?\$"
+  step "bench, strip-shaped match (HOROPTER_OPENCL_SAD=strip)" "$T_BENCH_STRIP" \
+    env HOROPTER_OPENCL_SAD=strip $R "$G/bin/horopter_bench" \
+    --benchmark_filter="$FS" --benchmark_min_time="$MIN_TIME" \
+    --benchmark_out="$OUT/bench_strip.json" --benchmark_out_format=json
 
   echo
   echo "===== summary ($((SECONDS - t_start)) s in all)"
