@@ -70,6 +70,8 @@ const Registry& registry() {
 Device::Device(DeviceDesc desc) : desc_(std::move(desc)) {}
 
 Device::~Device() {
+  for (auto& [options, program] : variants_)
+    if (program) clReleaseProgram(program);
   if (program_) clReleaseProgram(program_);
   if (queue_) clReleaseCommandQueue(queue_);
   if (context_) clReleaseContext(context_);
@@ -110,6 +112,15 @@ cl_program Device::program() {
     origin_ = built.origin;
   }
   return program_;
+}
+
+cl_program Device::program(const std::string& extraOptions) {
+  if (extraOptions.empty()) return program();
+  cl_context ctx = context();
+  const std::lock_guard<std::mutex> lock(setup_);
+  cl_program& built = variants_[extraOptions];
+  if (!built) built = buildProgram(desc_, ctx, extraOptions).program;
+  return built;
 }
 
 ProgramOrigin Device::programOrigin() {

@@ -3,6 +3,7 @@
 // front end's program, built once per process on first use.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -37,6 +38,9 @@ class Device {
   cl_context context();
   cl_command_queue queue();  // the synchronous kernel path's queue
   cl_program program();      // every front-end kernel, built once
+  // The same sources built with extra options (tiled_variant.hpp), once
+  // per distinct options; "" is program().
+  cl_program program(const std::string& extraOptions);
   ProgramOrigin programOrigin();
   // Held by the synchronous kernel path for a whole call: cl_kernel
   // arguments and the shared buffers are per-object state.
@@ -48,6 +52,7 @@ class Device {
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   cl_program program_ = nullptr;
+  std::map<std::string, cl_program> variants_;  // program(extraOptions)
   ProgramOrigin origin_ = ProgramOrigin::Source;
 };
 

@@ -87,7 +87,20 @@ Kernels::Kernels(Device& device)
       sadDecide(createKernel(device, "sad_decide")),
       lrCheck(createKernel(device, "lr_check")),
       median(createKernel(device, "median_filter")),
-      mask(createKernel(device, "horopter_mask")) {}
+      mask(createKernel(device, "horopter_mask")),
+      device_(&device) {}
+
+cl_kernel Kernels::costsFor(const TiledVariant& variant) const {
+  const std::string options = variant.buildOptions();
+  if (options.empty()) return sadCosts.get();
+  KernelHandle& k = variantCosts_[options];
+  if (!k) {
+    cl_int err = CL_SUCCESS;
+    k.reset(clCreateKernel(device_->program(options), "sad_costs", &err));
+    check(err, ("creating kernel sad_costs (tiled variant " + variant.name + ")").c_str());
+  }
+  return k.get();
+}
 
 void writeRows(cl_command_queue q, cl_mem buffer, const ConstImageView& view, int r0, int r1,
                bool blocking, cl_event* event) {
@@ -201,19 +214,18 @@ void enqueueMatchStrip(cl_command_queue q, cl_kernel k, const DeviceDesc& device
         "running the matcher");
 }
 
-// The cost volume's work-group: 32 columns (a warp's consecutive words) by
-// 8 rows (fewer where the device allows less than 256 work-items for
-// sad_costs); fixed, so PoCL compiles sad_costs once.
-constexpr size_t kCostTileWidth = 32;
-constexpr size_t kCostTileHeight = 8;
-
-size_t costTileHeight(cl_kernel k, const DeviceDesc& device) {
+// The cost volume's work-group: the variant's shape (by default 32 columns,
+// a warp's consecutive words, by 8 rows), fewer rows where the device allows
+// fewer work-items for sad_costs; fixed, so PoCL compiles sad_costs once.
+size_t costTileHeight(cl_kernel k, const DeviceDesc& device, const TiledVariant& variant) {
+  const auto width = static_cast<size_t>(variant.groupWidth);
+  const auto height = static_cast<size_t>(variant.groupHeight);
   size_t most = 0;
   if (clGetKernelWorkGroupInfo(k, device.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most,
                                nullptr) != CL_SUCCESS ||
       most == 0)
-    return kCostTileHeight;
-  return std::clamp<size_t>(most / kCostTileWidth, 1, kCostTileHeight);
+    return height;
+  return std::clamp<size_t>(most / width, 1, height);
 }
 // Local memory sad_costs may take for its column sums.
 constexpr size_t kCostLocalBytes = 32 * 1024;
@@ -247,25 +259,36 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
   cl_mem costs = scratch.costs.get(
       context, rowBytes * static_cast<size_t>(std::min(bandRows, std::max(regionRows, 1))));
   const int minD = params.minDisparity, numD = params.numDisparities;
+  const TiledVariant variant = tiledVariant();
   for (int b0 = rows.begin; b0 < rows.end; b0 += bandRows) {
     const int b1 = std::min(rows.end, b0 + bandRows);
     const int yA = std::max(region.y0, b0);
     // No region rows where the region has no columns either.
     const int yB = region.x0 < region.x1 ? std::max(yA, std::min(region.y1, b1)) : yA;
     if (yA < yB) {
-      cl_kernel k = kernels.sadCosts.get();
-      const size_t tileHeight = costTileHeight(k, device);
-      // Planes per pass (sad_tiled.cl's SAD_TILED_PASS_PLANES at most): 4
-      // up to block 225, 3 past it, in 32 KB of local memory.
-      const size_t planeBytes = (kCostTileWidth + 2 * static_cast<size_t>(radius)) * tileHeight * 4;
-      const int perPass = static_cast<int>(std::clamp<size_t>(kCostLocalBytes / planeBytes, 1, 4));
+      cl_kernel k = kernels.costsFor(variant);
+      const size_t tileWidth = static_cast<size_t>(variant.groupWidth);
+      const size_t tileHeight = costTileHeight(k, device, variant);
+      // Planes per pass (sad_tiled.cl's SAD_TILED_PASS_PLANES at most, the
+      // variant's): by default 4 up to block 225, 3 past it, in 32 KB of
+      // local memory.
+      const size_t tileRows = tileHeight * static_cast<size_t>(variant.rows);
+      const size_t planeBytes = (tileWidth + 2 * static_cast<size_t>(radius)) * tileRows * 4;
+      const int perPass = static_cast<int>(std::clamp<size_t>(
+          kCostLocalBytes / planeBytes, 1, static_cast<size_t>(variant.passPlanes)));
       setArgs(k, left, right, texture, width, width, minD, numD, radius, region.x0, region.x1, yA,
               yB, guard.step, guards, useTexture, perPass, narrow, costs,
               LocalBytes{planeBytes * static_cast<size_t>(perPass)});
-      const size_t global[2] = {roundUp(static_cast<size_t>(region.x1 - region.x0), kCostTileWidth),
-                                roundUp(static_cast<size_t>(yB - yA), tileHeight)};
-      const size_t local[2] = {kCostTileWidth, tileHeight};
-      check(clEnqueueNDRangeKernel(q, k, 2, nullptr, global, local, 0, nullptr,
+      // A work-item per `rows` rows; with split, the third dimension runs
+      // over groups of split passes.
+      const int passes = (planes + perPass - 1) / perPass;
+      const int planeGroups = variant.split > 0 ? (passes + variant.split - 1) / variant.split : 1;
+      const size_t global[3] = {
+          roundUp(static_cast<size_t>(region.x1 - region.x0), tileWidth),
+          roundUp(static_cast<size_t>(yB - yA), tileRows) / static_cast<size_t>(variant.rows),
+          static_cast<size_t>(planeGroups)};
+      const size_t local[3] = {tileWidth, tileHeight, 1};
+      check(clEnqueueNDRangeKernel(q, k, 3, nullptr, global, local, 0, nullptr,
                                    eventFor(events, "match costs")),
             "running the matcher's cost volume");
     }

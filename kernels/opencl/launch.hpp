@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "horopter/core/image.hpp"
@@ -15,6 +17,7 @@
 #include "horopter/kernels/stereo_params.hpp"
 #include "opencl/cl_api.hpp"
 #include "opencl/device.hpp"
+#include "opencl/tiled_variant.hpp"
 
 namespace horopter::opencl {
 
@@ -52,6 +55,13 @@ class Events {
 struct Kernels {
   explicit Kernels(Device& device);
   KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, lrCheck, median, mask;
+  // sad_costs of a tuning variant's program (sadCosts for the default's
+  // options), created on first use.
+  cl_kernel costsFor(const TiledVariant& variant) const;
+
+ private:
+  Device* device_;
+  mutable std::map<std::string, KernelHandle> variantCosts_;
 };
 
 // Where a launch's profiling events go: a slot for the event of the stage
@@ -85,6 +95,8 @@ enum class SadShape { Strip, Tiled };
 // HOROPTER_OPENCL_SAD=strip|tiled|auto (unset or empty: auto): auto takes
 // Tiled on a GPU and Strip elsewhere. Any other value is a horopter::Error.
 SadShape sadShape(const DeviceDesc& device);
+// The tiled shape's cost-kernel variant is HOROPTER_OPENCL_TILED's:
+// tiledVariant() (tiled_variant.hpp), for tuning sweeps.
 const char* sadShapeName(SadShape shape);
 
 // Scratch of the matcher: per strip of rows (Strip), the cost volume (Tiled).

@@ -64,6 +64,7 @@ Pipeline::Pipeline(const std::string& backendName, const StereoParams& stereo,
   s.device = devices()[static_cast<std::size_t>(index)];
   s.median = median;
   sadShape(s.device->desc());  // a bad HOROPTER_OPENCL_SAD fails here, not at the first frame
+  tiledVariant();              // and a bad HOROPTER_OPENCL_TILED
   s.kernels = std::make_unique<Kernels>(*s.device);  // builds the program (or throws)
   s.queue = createQueue(*s.device);
   s.slots = std::vector<Impl::Slot>(static_cast<std::size_t>(slots));

@@ -49,10 +49,10 @@ std::string hex(std::uint64_t v) {
 }
 
 // What an entry must match: anything that changes the binary.
-std::string cacheKey(const DeviceDesc& device) {
+std::string cacheKey(const DeviceDesc& device, const std::string& extraOptions) {
   return "device=" + device.name + "\nplatform=" + device.platformName +
          "\ndriver=" + device.driverVersion + "\nversion=" + device.version +
-         "\noptions=" + buildOptions() + "\nsources=" + hex(sourceHash()) + "\n";
+         "\noptions=" + buildOptions() + extraOptions + "\nsources=" + hex(sourceHash()) + "\n";
 }
 
 std::string buildLog(cl_program program, cl_device_id device) {
@@ -66,13 +66,14 @@ std::string buildLog(cl_program program, cl_device_id device) {
   return log;
 }
 
-cl_program buildFromSource(const DeviceDesc& device, cl_context context) {
+cl_program buildFromSource(const DeviceDesc& device, cl_context context,
+                           const std::string& extraOptions) {
   std::vector<const char*> srcs = allSources();
   cl_int err = CL_SUCCESS;
   cl_program program = clCreateProgramWithSource(context, static_cast<cl_uint>(srcs.size()),
                                                  srcs.data(), nullptr, &err);
   check(err, "creating the program from source");
-  std::string options = buildOptions();
+  std::string options = buildOptions() + extraOptions;
   if (injectedBuildFailure()) options += " -DHOROPTER_INJECT_BUILD_FAILURE";
   err = clBuildProgram(program, 1, &device.id, options.c_str(), nullptr, nullptr);
   if (err != CL_SUCCESS) {
@@ -167,6 +168,7 @@ void writeEntry(const std::string& path, const std::string& key,
 }
 
 cl_program buildFromBinary(const DeviceDesc& device, cl_context context,
+                           const std::string& extraOptions,
                            const std::vector<unsigned char>& binary) {
   const unsigned char* ptr = binary.data();
   const size_t size = binary.size();
@@ -177,8 +179,8 @@ cl_program buildFromBinary(const DeviceDesc& device, cl_context context,
     if (program) clReleaseProgram(program);
     return nullptr;
   }
-  if (clBuildProgram(program, 1, &device.id, buildOptions().c_str(), nullptr, nullptr) !=
-      CL_SUCCESS) {
+  const std::string options = buildOptions() + extraOptions;
+  if (clBuildProgram(program, 1, &device.id, options.c_str(), nullptr, nullptr) != CL_SUCCESS) {
     clReleaseProgram(program);
     return nullptr;
   }
@@ -208,19 +210,20 @@ std::string cacheDirectory() {
   return "";
 }
 
-BuiltProgram buildProgram(const DeviceDesc& device, cl_context context) {
+BuiltProgram buildProgram(const DeviceDesc& device, cl_context context,
+                          const std::string& extraOptions) {
   BuiltProgram built;
   const std::string dir = injectedBuildFailure() ? "" : cacheDirectory();
   if (dir.empty()) {
-    built.program = buildFromSource(device, context);
+    built.program = buildFromSource(device, context, extraOptions);
     return built;
   }
-  const std::string key = cacheKey(device);
+  const std::string key = cacheKey(device, extraOptions);
   built.cacheFile = dir + "/opencl-" + hex(fnv1a(key.data(), key.size())) + ".bin";
   std::vector<unsigned char> binary;
   std::string why;
   if (readEntry(built.cacheFile, key, binary, why)) {
-    built.program = buildFromBinary(device, context, binary);
+    built.program = buildFromBinary(device, context, extraOptions, binary);
     if (built.program) {
       built.origin = ProgramOrigin::DiskCache;
       return built;
@@ -232,7 +235,7 @@ BuiltProgram buildProgram(const DeviceDesc& device, cl_context context) {
               << "; rebuilding it from source\n";
     built.origin = ProgramOrigin::RebuiltAfterBadCacheEntry;
   }
-  built.program = buildFromSource(device, context);
+  built.program = buildFromSource(device, context, extraOptions);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!ec) writeEntry(built.cacheFile, key, programBinary(built.program));

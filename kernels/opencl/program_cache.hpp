@@ -33,7 +33,10 @@ std::string cacheDirectory();
 // Builds (or loads) the program for `device`; throws horopter::Error with
 // the build log when the sources do not build. Not cached in process: see
 // Device::program().
-BuiltProgram buildProgram(const DeviceDesc& device, cl_context context);
+// `extraOptions` (" -DNAME=value ..."): added to buildOptions() and to the
+// cache entry's key (the tiled matcher's variants, tiled_variant.hpp).
+BuiltProgram buildProgram(const DeviceDesc& device, cl_context context,
+                          const std::string& extraOptions = "");
 
 // Test hook: when set (or with HOROPTER_OPENCL_FAIL_BUILD=1 in the
 // environment), builds fail as a compiler error would, to exercise the

@@ -5,7 +5,8 @@
 //   sad_match gives one work-item a strip of rows, which suits a CPU and
 //   starves a GPU. Here two kernels share a cost volume in global memory:
 //   - sad_costs: a 2-D NDRange over the region's pixels in fixed
-//     work-groups (launch.cpp: 32 x 8). For each pass of perPass planes,
+//     work-groups (launch.cpp: 32 x 8; the tuning variants below change the
+//     shape and the passes, not the costs). For each pass of perPass planes,
 //     the group sums the window's height for its columns plus the window's
 //     margins into local memory (one value per plane, column and row of the
 //     tile; a left pixel read once for the pass's planes), then each
@@ -54,9 +55,29 @@ void sad_tiled_store(__global int* restrict costs, size_t i, int narrow, int c) 
     costs[i] = c;
 }
 
+// Tuning variants (kernels/opencl/tiled_variant.hpp; HOROPTER_OPENCL_TILED)
+// set these as build options; the defaults are the default variant's.
 // The most planes one pass of sad_costs handles (perPass <= this): each left
 // pixel is read once for all of them.
+#ifndef SAD_TILED_PASS_PLANES
 #define SAD_TILED_PASS_PLANES 4
+#endif
+// 1: the column sums spread linearly over the whole group; 0: row by row,
+// work-item (lx, ly) takes the row ly's columns lx, lx + tileW, ...
+#ifndef SAD_TILED_SPREAD
+#define SAD_TILED_SPREAD 1
+#endif
+// 0: a group takes all the planes; n > 0: a group takes n passes, the
+// NDRange's third dimension (get_group_id(2)) runs over the planes.
+#ifndef SAD_TILED_SPLIT
+#define SAD_TILED_SPLIT 0
+#endif
+// Rows per work-item: a work-item's column sums slide down this many rows
+// (two rows' terms a step, not the window's height), the tile is tileH *
+// SAD_TILED_ROWS rows tall.
+#ifndef SAD_TILED_ROWS
+#define SAD_TILED_ROWS 1
+#endif
 
 __kernel void sad_costs(__global const uchar* restrict left, __global const uchar* restrict right,
                         __global const uchar* restrict texture, int inStride, int width, int minD,
@@ -68,13 +89,17 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
   const int bx = x0 + get_group_id(0) * tileW;
   const int x = bx + lx;
   const int tileH = get_local_size(1);
-  const int by = yA + get_group_id(1) * tileH;
-  const int y = by + ly;
+  const int by = yA + get_group_id(1) * tileH * SAD_TILED_ROWS;
   const int tw = tileW + 2 * radius;  // the tile's columns [bx - radius, bx + tileW + radius)
-  const int slab = tileH * tw;        // one plane's column sums, [row][column]
+  const int slab = tileH * SAD_TILED_ROWS * tw;  // one plane's column sums, [row][column]
   const int planes = numD + guardCount + useTexture;
-  const int lid = ly * tileW + lx, groupSize = tileW * tileH;
-  for (int p0 = 0; p0 < planes; p0 += perPass) {
+#if SAD_TILED_SPLIT > 0
+  const int pBegin = get_group_id(2) * SAD_TILED_SPLIT * perPass;
+  const int pEnd = min(planes, pBegin + SAD_TILED_SPLIT * perPass);
+#else
+  const int pBegin = 0, pEnd = planes;
+#endif
+  for (int p0 = pBegin; p0 < pEnd; p0 += perPass) {
     // Per plane of the pass: kind 0 range, 1 guard, 2 texture, 3 none.
     int kind[SAD_TILED_PASS_PLANES], d[SAD_TILED_PASS_PLANES];
 #pragma unroll
@@ -83,12 +108,19 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
       kind[q] = (q >= perPass || p >= planes) ? 3 : (p < numD ? 0 : (p < numD + guardCount ? 1 : 2));
       d[q] = kind[q] == 0 ? minD + p : (kind[q] == 1 ? minD - (p - numD + 1) * guardStep : 0);
     }
-    // The column sums, spread over the whole group (consecutive work-items
-    // take consecutive columns, whole warps go idle at the end).
-    for (int e = lid; e < slab; e += groupSize) {
+    // The column sums of the tile's rows by + ty * SAD_TILED_ROWS (ty <
+    // tileH) and, sliding down, of the SAD_TILED_ROWS - 1 rows below each.
+#if SAD_TILED_SPREAD
+    // Spread over the whole group (consecutive work-items take consecutive
+    // columns, whole warps go idle at the end).
+    for (int e = ly * tileW + lx; e < tileH * tw; e += tileW * tileH) {
       const int ty = e / tw, tx = e - ty * tw;
+#else
+    for (int e = ly * tw + lx; e < (ly + 1) * tw; e += tileW) {
+      const int ty = ly, tx = e - ly * tw;
+#endif
       const int gx = bx - radius + tx;
-      const int gy = by + ty;
+      const int gy = by + ty * SAD_TILED_ROWS;
       int s[SAD_TILED_PASS_PLANES];
       int use[SAD_TILED_PASS_PLANES];
 #pragma unroll
@@ -98,7 +130,8 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
         // the image (guard planes only), are never summed into a cost kept.
         use[q] = kind[q] != 3 && gx < x1 + radius && gx - d[q] < width;
       }
-      int at = (gy - radius) * inStride + gx;
+      int top = (gy - radius) * inStride + gx;  // the window's first row
+      int at = top;
       // None past the image's columns, or below the rows asked for.
       const int rowsIn = gx < x1 + radius && gy < yB ? 2 * radius + 1 : 0;
       for (int j = 0; j < rowsIn; ++j, at += inStride) {
@@ -108,22 +141,46 @@ __kernel void sad_costs(__global const uchar* restrict left, __global const ucha
           if (use[q]) s[q] += kind[q] == 2 ? (int)texture[at] : abs(lv - (int)right[at - d[q]]);
         }
       }
+      __local int* out = vsum + ty * SAD_TILED_ROWS * tw + tx;
 #pragma unroll
       for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
-        if (q < perPass) vsum[q * slab + e] = s[q];
+        if (q < perPass) out[q * slab] = s[q];
       }
+#if SAD_TILED_ROWS > 1
+      // Row gy + r from row gy + r - 1: the row entering the window (at,
+      // one past its last) in, the one leaving it (top) out.
+      const int rowsDown = rowsIn > 0 ? min(SAD_TILED_ROWS, yB - gy) : 0;
+      for (int r = 1; r < rowsDown; ++r, at += inStride, top += inStride) {
+        const int lin = left[at], lout = left[top];
+#pragma unroll
+        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+          if (use[q])
+            s[q] += kind[q] == 2 ? (int)texture[at] - (int)texture[top]
+                                 : abs(lin - (int)right[at - d[q]]) - abs(lout - (int)right[top - d[q]]);
+        }
+        out += tw;
+#pragma unroll
+        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+          if (q < perPass) out[q * slab] = s[q];
+        }
+      }
+#endif
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (y < yB && x < x1) {
 #pragma unroll
-      for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
-        if (kind[q] == 3) continue;
-        __local const int* mine = vsum + q * slab + ly * tw + lx;
-        int c = 0;
-        for (int i = 0; i <= 2 * radius; ++i)
-          c += mine[i];
-        if (kind[q] == 1 && x - d[q] + radius >= width) c = INT_MAX;
-        sad_tiled_store(costs, ((size_t)(y - yA) * planes + p0 + q) * width + x, narrow, c);
+    for (int r = 0; r < SAD_TILED_ROWS; ++r) {
+      const int y = by + ly * SAD_TILED_ROWS + r;
+      if (y < yB && x < x1) {
+#pragma unroll
+        for (int q = 0; q < SAD_TILED_PASS_PLANES; ++q) {
+          if (kind[q] == 3) continue;
+          __local const int* mine = vsum + q * slab + (ly * SAD_TILED_ROWS + r) * tw + lx;
+          int c = 0;
+          for (int i = 0; i <= 2 * radius; ++i)
+            c += mine[i];
+          if (kind[q] == 1 && x - d[q] + radius >= width) c = INT_MAX;
+          sad_tiled_store(costs, ((size_t)(y - yA) * planes + p0 + q) * width + x, narrow, c);
+        }
       }
     }
     barrier(CLK_LOCAL_MEM_FENCE);

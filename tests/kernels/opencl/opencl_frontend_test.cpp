@@ -183,6 +183,38 @@ TEST(OpenClFrontend, TiledMatcherInBandsOfRowsEqualsTheScalarFrontend) {
   opencl::setTiledBandBytes(0);
 }
 
+// The cost kernel's tuning variants (HOROPTER_OPENCL_TILED): one named, one
+// with every knob off its default (odd sizes: partial tiles, passes and
+// row groups), each its own program; the same results, bit for bit.
+TEST(OpenClFrontend, TiledMatcherVariantsEqualTheScalarFrontend) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(2);
+  const ScopedEnv sad("HOROPTER_OPENCL_SAD", "tiled");
+  for (const char* variant : {"rows4-split", "w=16,h=4,planes=3,spread=0,split=2,rows=3"}) {
+    const ScopedEnv tiled("HOROPTER_OPENCL_TILED", variant);
+    for (const Setting& s : settings()) {
+      SCOPED_TRACE(std::string(s.what) + ", variant " + variant);
+      const std::vector<TestImage> want = expected(s, pairs);
+      OpenClFrontend frontend(s.stereo, s.median, "opencl", 2);
+      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
+        EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+      }
+    }
+  }
+}
+
+TEST(OpenClFrontend, BadTiledVariantFallsBackWithTheReason) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const ScopedEnv sad("HOROPTER_OPENCL_SAD", "tiled");
+  const ScopedEnv tiled("HOROPTER_OPENCL_TILED", "fast");
+  OpenClFrontend frontend(settings()[1].stereo, settings()[1].median, "opencl");
+  EXPECT_TRUE(frontend.onCpu());
+  EXPECT_NE(frontend.fallbackReason().find("HOROPTER_OPENCL_TILED='fast'"), std::string::npos)
+      << frontend.fallbackReason();
+}
+
 TEST(OpenClFrontend, BadSadShapeFallsBackWithTheReason) {
   HOROPTER_REQUIRE_OPENCL_DEVICE();
   const std::vector<StereoPair> pairs = frames(1);

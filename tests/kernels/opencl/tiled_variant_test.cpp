@@ -1,0 +1,78 @@
+// The tiled matcher's tuning variants (kernels/opencl/tiled_variant.hpp):
+// HOROPTER_OPENCL_TILED takes a variant's name or key=value pairs over the
+// default, each variant builds with its own options (so its own program and
+// program-cache entry), and a bad value is an error naming the variable.
+// Needs no device.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "horopter/core/error.hpp"
+#include "opencl/tiled_variant.hpp"
+#include "scoped_env.hpp"
+
+namespace horopter::test {
+namespace {
+
+TEST(TiledVariant, UnsetOrEmptyIsTheDefaultWithTheProgramsOwnOptions) {
+  for (const char* value : {static_cast<const char*>(nullptr), ""}) {
+    const ScopedEnv env("HOROPTER_OPENCL_TILED", value);
+    const opencl::TiledVariant v = opencl::tiledVariant();
+    EXPECT_EQ(v.name, "default");
+    EXPECT_EQ(v.buildOptions(), "");
+  }
+  EXPECT_EQ(opencl::tiledVariants().front().name, "default");
+}
+
+TEST(TiledVariant, EveryNamedVariantIsFoundAndBuildsWithItsOwnOptions) {
+  std::set<std::string> options;
+  for (const opencl::TiledVariant& v : opencl::tiledVariants()) {
+    const ScopedEnv env("HOROPTER_OPENCL_TILED", v.name.c_str());
+    const opencl::TiledVariant got = opencl::tiledVariant();
+    EXPECT_EQ(got.name, v.name);
+    // Variants that differ only in the launch (the work-group's shape)
+    // share the default's program.
+    const bool sameKernel = v.passPlanes == 4 && v.spread && v.split == 0 && v.rows == 1;
+    EXPECT_EQ(got.buildOptions().empty(), sameKernel) << v.name;
+    if (!sameKernel) {
+      EXPECT_TRUE(options.insert(got.buildOptions()).second) << v.name;
+    }
+  }
+}
+
+TEST(TiledVariant, KeyValuePairsChangeTheDefault) {
+  const opencl::TiledVariant v =
+      opencl::parseTiledVariant("w=16,h=4,planes=3,spread=0,split=2,rows=3");
+  EXPECT_EQ(v.groupWidth, 16);
+  EXPECT_EQ(v.groupHeight, 4);
+  EXPECT_EQ(v.passPlanes, 3);
+  EXPECT_FALSE(v.spread);
+  EXPECT_EQ(v.split, 2);
+  EXPECT_EQ(v.rows, 3);
+  EXPECT_EQ(v.buildOptions(),
+            " -DSAD_TILED_PASS_PLANES=3 -DSAD_TILED_SPREAD=0 -DSAD_TILED_SPLIT=2"
+            " -DSAD_TILED_ROWS=3");
+  const opencl::TiledVariant wide = opencl::parseTiledVariant("w=64,h=4");
+  EXPECT_EQ(wide.groupWidth, 64);
+  EXPECT_EQ(wide.passPlanes, opencl::tiledVariants().front().passPlanes);
+}
+
+TEST(TiledVariant, AnyOtherValueIsAnErrorNamingTheVariable) {
+  for (const char* value : {"fast", "Default", "w=0", "w=64,h=32", "planes=9", "rows=17",
+                            "depth=2", "w=", "w=4x", "w=32,,h=8"}) {
+    SCOPED_TRACE(value);
+    const ScopedEnv env("HOROPTER_OPENCL_TILED", value);
+    try {
+      opencl::tiledVariant();
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("HOROPTER_OPENCL_TILED='" + std::string(value) + "'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace horopter::test
