@@ -259,7 +259,7 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
   cl_mem costs = scratch.costs.get(
       context, rowBytes * static_cast<size_t>(std::min(bandRows, std::max(regionRows, 1))));
   const int minD = params.minDisparity, numD = params.numDisparities;
-  const TiledVariant variant = tiledVariant();
+  const TiledVariant variant = tiledVariant().forBlock(params.blockSize);
   for (int b0 = rows.begin; b0 < rows.end; b0 += bandRows) {
     const int b1 = std::min(rows.end, b0 + bandRows);
     const int yA = std::max(region.y0, b0);

@@ -25,11 +25,12 @@ TiledVariant named(const char* name, int w, int h, int planes, bool spread, int 
   std::string names;
   for (const TiledVariant& v : tiledVariants())
     names += (names.empty() ? "" : ", ") + v.name;
-  throw Error("HOROPTER_OPENCL_TILED='" + value + "' is not a tiled-matcher variant (" + why +
-              "): use one of " + names +
-              ", or key=value pairs joined by commas (w, h: work-group shape, w*h <= 1024; "
-              "planes: 1-8 per pass; spread: 0|1; split: passes per group, 0 for all; rows: 1-16 per "
-              "work-item)");
+  throw Error(
+      "HOROPTER_OPENCL_TILED='" + value + "' is not a tiled-matcher variant (" + why +
+      "): use one of " + names +
+      ", or key=value pairs joined by commas (w, h: work-group shape, w*h <= 1024; "
+      "planes: 1-8 per pass; spread: 0|1; split: passes per group, 0 for all; rows: 1-16 per "
+      "work-item; block: a block size compiled in)");
 }
 
 int number(const std::string& value, const std::string& text) {
@@ -49,7 +50,14 @@ std::string TiledVariant::buildOptions() const {
   if (spread != base.spread) options += " -DSAD_TILED_SPREAD=" + std::to_string(spread ? 1 : 0);
   if (split != base.split) options += " -DSAD_TILED_SPLIT=" + std::to_string(split);
   if (rows != base.rows) options += " -DSAD_TILED_ROWS=" + std::to_string(rows);
+  if (block != base.block) options += " -DSAD_TILED_RADIUS=" + std::to_string(block / 2);
   return options;
+}
+
+TiledVariant TiledVariant::forBlock(int blockSize) const {
+  TiledVariant v = *this;
+  if (v.block != blockSize) v.block = 0;
+  return v;
 }
 
 const std::vector<TiledVariant>& tiledVariants() {
@@ -92,6 +100,8 @@ TiledVariant parseTiledVariant(const std::string& value) {
       v.split = n;
     else if (key == "rows")
       v.rows = n;
+    else if (key == "block")
+      v.block = n;
     else
       bad(value, "unknown key '" + key + "'");
   }
@@ -99,6 +109,7 @@ TiledVariant parseTiledVariant(const std::string& value) {
     bad(value, "the work-group must have 1 to 1024 work-items");
   if (v.passPlanes < 1 || v.passPlanes > 8) bad(value, "planes must be 1 to 8");
   if (v.rows < 1 || v.rows > 16) bad(value, "rows must be 1 to 16");
+  if (v.block != 0 && (v.block % 2 == 0 || v.block > 255)) bad(value, "block must be odd, <= 255");
   return v;
 }
 

@@ -20,18 +20,22 @@ struct TiledVariant {
   bool spread = true;   // column sums spread over the group (SAD_TILED_SPREAD)
   int split = 0;        // passes per group, 0: all (SAD_TILED_SPLIT)
   int rows = 1;         // rows per work-item, sliding sums (SAD_TILED_ROWS)
+  int block = 0;        // a block size compiled in (SAD_TILED_RADIUS), 0: any;
+                        // other block sizes take the variant without it
 
   // The -D build options of sad_tiled.cl; "" for the default variant's
   // values (the program every kernel comes from).
   std::string buildOptions() const;
+  // This variant for a block size: without `block` where it differs.
+  TiledVariant forBlock(int blockSize) const;
 };
 
 // The named variants, the default first.
 const std::vector<TiledVariant>& tiledVariants();
 
 // HOROPTER_OPENCL_TILED: a variant's name, or a comma-separated list of
-// key=value over the default (w, h, planes, spread, split, rows),
-// e.g. "w=64,h=4,split=1". Anything else is a horopter::Error naming the value.
+// key=value over the default (w, h, planes, spread, split, rows,
+// block), e.g. "w=64,h=4,split=1". Anything else is a horopter::Error naming the value.
 TiledVariant tiledVariant();
 TiledVariant parseTiledVariant(const std::string& value);
 

@@ -5,17 +5,20 @@
 # Runs the two OpenCL `kernels` bench rows (device time) once per variant
 # and OpenCV's OpenCL StereoBM rows once, prints a table, and writes under
 # $OUT: sweep_tiled.log and sweep_tiled.tar.gz (one bench JSON per run).
-# Knobs: VARIANTS (names or key=value lists, space-separated; default every
-# named variant), MIN_TIME (0.3 s), T_RUN (limit of one run, 25 s), TOTAL
-# (120 s: no run starts past it).
+# Knobs: VARIANTS (names or key=value lists, space-separated; default
+# below), MIN_TIME (0.3 s), T_RUN (limit of one run, 25 s), TOTAL (120 s:
+# no run starts past it).
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/../.." || exit 1
 . scripts/device/gpu_env.sh
 G=$PWD/.gpu
 OUT=${OUT:-/tmp/gpuout}
 mkdir -p "$OUT"
-# (the likeliest first: a run cut short by TOTAL loses the last ones)
-VARIANTS=${VARIANTS:-default rows4-split rows8-split rows4 split p8 g64x4 rowwise}
+# The named variants and a few key=value ones (block=9: the rows' block
+# compiled in), the likeliest first: runs past TOTAL are skipped.
+VARIANTS=${VARIANTS:-default rows4-split rows8-split rows=4,split=1,block=9 \
+h=4,rows=8,split=1,block=9 block=9 split rows4 p8 g64x4 rowwise planes=8,split=1 \
+h=4,rows=8,planes=8,split=1,block=9 w=64,h=4,rows=4,split=1,block=9 rows=2,split=1,block=9}
 MIN_TIME=${MIN_TIME:-0.3}
 T_RUN=${T_RUN:-25}
 TOTAL=${TOTAL:-120}
@@ -39,7 +42,7 @@ main() {
     echo
     if [ "$left" -lt 5 ]; then
       echo "===== $label: NOT RUN (TOTAL=$TOTAL s spent)"
-      printf '%-24s NOT RUN (budget spent)\n' "$label" >> "$TMP/table"
+      printf '%-36s NOT RUN (budget spent)\n' "$label" >> "$TMP/table"
       return
     fi
     [ "$lim" -gt "$left" ] && lim=$left
@@ -56,17 +59,22 @@ main() {
       local costs decide
       costs=$(grep -oE 'match costs ms=[0-9.]+[a-z]*' <<< "$rest" | sed 's/.*=//')
       decide=$(grep -oE 'match decide ms=[0-9.]+[a-z]*' <<< "$rest" | sed 's/.*=//')
-      printf '%-24s %-34s %9s %-3s costs %-8s decide %-8s\n' "$label" \
+      printf '%-36s %-34s %9s %-3s costs %-8s decide %-8s\n' "$label" \
         "$(sed -E 's#^(disparity/opencl|opencv_stereobm_ocl)/##; s#/(manual|real)_time$##' <<< "$name")" \
         "$time" "$unit" "${costs:--}" "${decide:--}" >> "$TMP/table"
     done
-    [ "$rc" = 0 ] || printf '%-24s rc=%s\n' "$label" "$rc" >> "$TMP/table"
+    [ "$rc" = 0 ] || printf '%-36s rc=%s\n' "$label" "$rc" >> "$TMP/table"
   }
+  # OpenCV's rows after the first variant (the default: the baseline), so
+  # that a sweep cut short by TOTAL still has both references.
+  local first=1
   for v in $VARIANTS; do
     run "$v" "^disparity/opencl/$ROWS/kernels/manual_time\$" \
       HOROPTER_OPENCL_SAD=tiled HOROPTER_OPENCL_TILED="$v"
+    [ "$first" = 1 ] && run opencv_stereobm_ocl "^opencv_stereobm_ocl/$ROWS/real_time\$" \
+      HOROPTER_OPENCL_SAD=tiled
+    first=0
   done
-  run opencv_stereobm_ocl "^opencv_stereobm_ocl/$ROWS/real_time\$" HOROPTER_OPENCL_SAD=tiled
   tar czf "$OUT/sweep_tiled.tar.gz" -C "$TMP" sweep
   echo
   echo "===== table ($((SECONDS - t_start)) s in all; MODE: $MODE; min_time $MIN_TIME s)"

@@ -53,13 +53,17 @@ TEST(TiledVariant, KeyValuePairsChangeTheDefault) {
   EXPECT_EQ(v.buildOptions(),
             " -DSAD_TILED_PASS_PLANES=3 -DSAD_TILED_SPREAD=0 -DSAD_TILED_SPLIT=2"
             " -DSAD_TILED_ROWS=3");
+  // A block compiled in serves that block size; others take the rest.
+  const opencl::TiledVariant b9 = opencl::parseTiledVariant("rows=4,block=9");
+  EXPECT_EQ(b9.forBlock(9).buildOptions(), " -DSAD_TILED_ROWS=4 -DSAD_TILED_RADIUS=4");
+  EXPECT_EQ(b9.forBlock(11).buildOptions(), " -DSAD_TILED_ROWS=4");
   const opencl::TiledVariant wide = opencl::parseTiledVariant("w=64,h=4");
   EXPECT_EQ(wide.groupWidth, 64);
   EXPECT_EQ(wide.passPlanes, opencl::tiledVariants().front().passPlanes);
 }
 
 TEST(TiledVariant, AnyOtherValueIsAnErrorNamingTheVariable) {
-  for (const char* value : {"fast", "Default", "w=0", "w=64,h=32", "planes=9", "rows=17",
+  for (const char* value : {"fast", "Default", "w=0", "w=64,h=32", "planes=9", "rows=17", "block=8",
                             "depth=2", "w=", "w=4x", "w=32,,h=8"}) {
     SCOPED_TRACE(value);
     const ScopedEnv env("HOROPTER_OPENCL_TILED", value);
