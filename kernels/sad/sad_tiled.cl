@@ -56,7 +56,8 @@ void sad_tiled_store(__global int* restrict costs, size_t i, int narrow, int c) 
 }
 
 // Tuning variants (kernels/opencl/tiled_variant.hpp; HOROPTER_OPENCL_TILED)
-// set these as build options; the defaults are the default variant's.
+// set these as build options; the defaults are the default variant's
+// (tiled_variant.hpp; its block, 9, is a build option of its own program).
 // The most planes one pass of sad_costs handles (perPass <= this): each left
 // pixel is read once for all of them.
 #ifndef SAD_TILED_PASS_PLANES
@@ -70,13 +71,13 @@ void sad_tiled_store(__global int* restrict costs, size_t i, int narrow, int c) 
 // 0: a group takes all the planes; n > 0: a group takes n passes, the
 // NDRange's third dimension (get_group_id(2)) runs over the planes.
 #ifndef SAD_TILED_SPLIT
-#define SAD_TILED_SPLIT 0
+#define SAD_TILED_SPLIT 1
 #endif
 // Rows per work-item: a work-item's column sums slide down this many rows
 // (two rows' terms a step, not the window's height), the tile is tileH *
 // SAD_TILED_ROWS rows tall.
 #ifndef SAD_TILED_ROWS
-#define SAD_TILED_ROWS 1
+#define SAD_TILED_ROWS 4
 #endif
 // Defined: the program serves this window radius only (launch.cpp uses it
 // for that block size alone), so the compiler sees fixed loop counts.

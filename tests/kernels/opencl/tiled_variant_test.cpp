@@ -20,24 +20,30 @@ TEST(TiledVariant, UnsetOrEmptyIsTheDefaultWithTheProgramsOwnOptions) {
     const ScopedEnv env("HOROPTER_OPENCL_TILED", value);
     const opencl::TiledVariant v = opencl::tiledVariant();
     EXPECT_EQ(v.name, "default");
-    EXPECT_EQ(v.buildOptions(), "");
+    // Its block compiled in for that block size; the program's own
+    // defaults for every other.
+    EXPECT_EQ(v.forBlock(v.block).buildOptions(),
+              " -DSAD_TILED_RADIUS=" + std::to_string(v.block / 2));
+    EXPECT_EQ(v.forBlock(v.block + 2).buildOptions(), "");
   }
   EXPECT_EQ(opencl::tiledVariants().front().name, "default");
 }
 
 TEST(TiledVariant, EveryNamedVariantIsFoundAndBuildsWithItsOwnOptions) {
-  std::set<std::string> options;
+  std::set<std::string> variants;  // build options and work-group shape: each its own
   for (const opencl::TiledVariant& v : opencl::tiledVariants()) {
     const ScopedEnv env("HOROPTER_OPENCL_TILED", v.name.c_str());
     const opencl::TiledVariant got = opencl::tiledVariant();
     EXPECT_EQ(got.name, v.name);
-    // Variants that differ only in the launch (the work-group's shape)
-    // share the default's program.
-    const bool sameKernel = v.passPlanes == 4 && v.spread && v.split == 0 && v.rows == 1;
+    // Variants whose kernel parameters are the program's own defaults
+    // build no options of their own (the shape is the launch's).
+    const opencl::TiledVariant base;
+    const bool sameKernel = v.passPlanes == base.passPlanes && v.spread == base.spread &&
+                            v.split == base.split && v.rows == base.rows && v.block == 0;
     EXPECT_EQ(got.buildOptions().empty(), sameKernel) << v.name;
-    if (!sameKernel) {
-      EXPECT_TRUE(options.insert(got.buildOptions()).second) << v.name;
-    }
+    const std::string key = got.buildOptions() + " @" + std::to_string(got.groupWidth) + "x" +
+                            std::to_string(got.groupHeight);
+    EXPECT_TRUE(variants.insert(key).second) << v.name << " is another's twin";
   }
 }
 
@@ -50,13 +56,14 @@ TEST(TiledVariant, KeyValuePairsChangeTheDefault) {
   EXPECT_FALSE(v.spread);
   EXPECT_EQ(v.split, 2);
   EXPECT_EQ(v.rows, 3);
-  EXPECT_EQ(v.buildOptions(),
+  EXPECT_EQ(v.forBlock(11).buildOptions(),
             " -DSAD_TILED_PASS_PLANES=3 -DSAD_TILED_SPREAD=0 -DSAD_TILED_SPLIT=2"
             " -DSAD_TILED_ROWS=3");
   // A block compiled in serves that block size; others take the rest.
-  const opencl::TiledVariant b9 = opencl::parseTiledVariant("rows=4,block=9");
-  EXPECT_EQ(b9.forBlock(9).buildOptions(), " -DSAD_TILED_ROWS=4 -DSAD_TILED_RADIUS=4");
-  EXPECT_EQ(b9.forBlock(11).buildOptions(), " -DSAD_TILED_ROWS=4");
+  const opencl::TiledVariant b7 = opencl::parseTiledVariant("rows=2,block=7");
+  EXPECT_EQ(b7.forBlock(7).buildOptions(), " -DSAD_TILED_ROWS=2 -DSAD_TILED_RADIUS=3");
+  EXPECT_EQ(b7.forBlock(9).buildOptions(), " -DSAD_TILED_ROWS=2");
+  EXPECT_EQ(opencl::parseTiledVariant("block=0").forBlock(9).buildOptions(), "");
   const opencl::TiledVariant wide = opencl::parseTiledVariant("w=64,h=4");
   EXPECT_EQ(wide.groupWidth, 64);
   EXPECT_EQ(wide.passPlanes, opencl::tiledVariants().front().passPlanes);
