@@ -1,7 +1,12 @@
 # Sourced by the device scripts (run_gpu.sh, sweep_tiled.sh): the bundle in
 # .gpu, the NVIDIA OpenCL library as the only ICD, and how to start the
-# binaries. Expects G (the bundle folder); sets TMP, NVLIB, NVDIR, RUN (a
-# prefix for every binary: empty, or the carried glibc's loader) and MODE.
+# binaries. Sourced from the repo root: sets G (the bundle folder) and OUT
+# (default /tmp/gpuout, made) at once; its functions set TMP, NVLIB, NVDIR,
+# RUN (a prefix for every binary: empty, or the carried glibc's loader) and
+# MODE.
+G=$PWD/.gpu
+OUT=${OUT:-/tmp/gpuout}
+mkdir -p "$OUT"
 
 # A scratch folder ($TMP, the OpenCL program cache in it), and the bundle
 # runnable: a carry that dropped the exec bits, or a read-only tree, gets a

@@ -8,10 +8,7 @@
 # (bench).
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/../.." || exit 1
-. scripts/device/gpu_env.sh
-G=$PWD/.gpu
-OUT=${OUT:-/tmp/gpuout}
-mkdir -p "$OUT"
+. scripts/device/gpu_env.sh  # G (the bundle), OUT (made), the functions
 T_CONF=${T_CONF:-170}
 T_BENCH_STRIP=${T_BENCH_STRIP:-60}
 T_OCL=${T_OCL:-60}

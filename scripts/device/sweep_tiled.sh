@@ -10,10 +10,7 @@
 # no run starts past it).
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/../.." || exit 1
-. scripts/device/gpu_env.sh
-G=$PWD/.gpu
-OUT=${OUT:-/tmp/gpuout}
-mkdir -p "$OUT"
+. scripts/device/gpu_env.sh  # G (the bundle), OUT (made), the functions
 # The named variants and a few key=value ones (block=9: the rows' block
 # compiled in), the likeliest first: runs past TOTAL are skipped.
 VARIANTS=${VARIANTS:-default rows4-split rows8-split rows=4,split=1,block=9 \
