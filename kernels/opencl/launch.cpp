@@ -214,9 +214,10 @@ void enqueueMatchStrip(cl_command_queue q, cl_kernel k, const DeviceDesc& device
         "running the matcher");
 }
 
-// The cost volume's work-group: the variant's shape (by default 32 columns,
-// a warp's consecutive words, by 8 rows), fewer rows where the device allows
-// fewer work-items for sad_costs; fixed, so PoCL compiles sad_costs once.
+// The cost volume's work-group: the variant's shape (by default 64 columns,
+// two warps' consecutive words, by 4 rows), fewer rows where the device
+// allows fewer work-items for sad_costs; fixed per variant, so PoCL compiles
+// each variant's sad_costs once.
 size_t costTileHeight(cl_kernel k, const DeviceDesc& device, const TiledVariant& variant) {
   const auto width = static_cast<size_t>(variant.groupWidth);
   const auto height = static_cast<size_t>(variant.groupHeight);
@@ -269,9 +270,9 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
       cl_kernel k = kernels.costsFor(variant);
       const size_t tileWidth = static_cast<size_t>(variant.groupWidth);
       const size_t tileHeight = costTileHeight(k, device, variant);
-      // Planes per pass (sad_tiled.cl's SAD_TILED_PASS_PLANES at most, the
-      // variant's): by default 4 up to block 225, 3 past it, in 32 KB of
-      // local memory.
+      // Planes per pass: the variant's (sad_tiled.cl's SAD_TILED_PASS_PLANES)
+      // at most, fewer where a pass's column sums would pass 32 KB of local
+      // memory (by default 4 up to block 65, 1 at block 255).
       const size_t tileRows = tileHeight * static_cast<size_t>(variant.rows);
       const size_t planeBytes = (tileWidth + 2 * static_cast<size_t>(radius)) * tileRows * 4;
       const int perPass = static_cast<int>(std::clamp<size_t>(

@@ -5,7 +5,7 @@
 //   sad_match gives one work-item a strip of rows, which suits a CPU and
 //   starves a GPU. Here two kernels share a cost volume in global memory:
 //   - sad_costs: a 2-D NDRange over the region's pixels in fixed
-//     work-groups (launch.cpp: 32 x 8; the tuning variants below change the
+//     work-groups (launch.cpp: 64 x 4 by default; the tuning variants below change the
 //     shape and the passes, not the costs). For each pass of perPass planes,
 //     the group sums the window's height for its columns plus the window's
 //     margins into local memory (one value per plane, column and row of the

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,20 @@ std::vector<TestImage> expected(const Setting& s, const std::vector<StereoPair>&
   for (const StereoPair& p : pairs)
     out.push_back(copyOf(ref.computeDisparity(p.left.view(), p.right.view()).view()));
   return out;
+}
+
+// A two-slot OpenCL front end for `s`, frame by frame, against the scalar
+// front end's results; returned for the caller's further checks.
+std::unique_ptr<OpenClFrontend> expectFramesEqualScalar(const Setting& s,
+                                                        const std::vector<StereoPair>& pairs) {
+  const std::vector<TestImage> want = expected(s, pairs);
+  auto frontend = std::make_unique<OpenClFrontend>(s.stereo, s.median, "opencl", 2);
+  EXPECT_FALSE(frontend->onCpu()) << frontend->fallbackReason();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const Image& got = frontend->computeDisparity(pairs[i].left.view(), pairs[i].right.view());
+    EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
+  }
+  return frontend;
 }
 
 TEST(OpenClFrontend, FramesInFlightEqualTheScalarFrontendInOrder) {
@@ -167,15 +182,9 @@ TEST(OpenClFrontend, TiledMatcherInBandsOfRowsEqualsTheScalarFrontend) {
     opencl::setTiledBandBytes(bandBytes);  // 1: one row per band
     for (const Setting& s : settings()) {
       SCOPED_TRACE(std::string(s.what) + ", bands of " + std::to_string(bandBytes) + " bytes");
-      const std::vector<TestImage> want = expected(s, pairs);
-      OpenClFrontend frontend(s.stereo, s.median, "opencl", 2);
-      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
-      for (std::size_t i = 0; i < pairs.size(); ++i) {
-        const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
-        EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
-      }
+      const std::unique_ptr<OpenClFrontend> frontend = expectFramesEqualScalar(s, pairs);
       std::vector<std::string> stages;
-      for (const OpenClStageTime& t : frontend.profile())
+      for (const OpenClStageTime& t : frontend->profile())
         stages.push_back(t.stage);
       EXPECT_EQ(std::count(stages.begin(), stages.end(), std::string("match costs")), 1);
     }
@@ -195,13 +204,7 @@ TEST(OpenClFrontend, TiledMatcherVariantsEqualTheScalarFrontend) {
     const ScopedEnv tiled("HOROPTER_OPENCL_TILED", variant);
     for (const Setting& s : settings()) {
       SCOPED_TRACE(std::string(s.what) + ", variant " + variant);
-      const std::vector<TestImage> want = expected(s, pairs);
-      OpenClFrontend frontend(s.stereo, s.median, "opencl", 2);
-      ASSERT_FALSE(frontend.onCpu()) << frontend.fallbackReason();
-      for (std::size_t i = 0; i < pairs.size(); ++i) {
-        const Image& got = frontend.computeDisparity(pairs[i].left.view(), pairs[i].right.view());
-        EXPECT_TRUE(sameImage(want[i].view(), got.view())) << "frame " << i;
-      }
+      expectFramesEqualScalar(s, pairs);
     }
   }
 }
