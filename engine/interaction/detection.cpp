@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 
 #include "body_face.hpp"
 #include "face_search.hpp"
 #include "horopter/core/error.hpp"
+#include "shirt_skin.hpp"
 
 namespace horopter {
 
@@ -29,8 +31,9 @@ struct Detector::Impl {
   DetectorOptions acquiring;  // the options with the acquisition's face scale
   bool facesFound = false;    // in the previous frame
   cv::Mat skin, grown, grey, bright, labels, stats, centroids, distance;
-  float faceLuma = 0;                // the skin's grey level in the last head found (0: none yet)
-  int sinceHead = kNoHead;           // frames since that head
+  float faceLuma = 0;       // the skin's grey level in the last head found (0: none yet)
+  int sinceHead = kNoHead;  // frames since that head
+  float clothLuma = 0;      // skin darker than this is a skin-coloured shirt (0: none seen)
   std::vector<std::int16_t> depths;  // scratch
   cv::Mat openKernel, closeKernel, maskCloseKernel, erodeKernel;
 };
@@ -96,6 +99,21 @@ std::span<const NumberOption<DetectorOptions>> detectorOptions() {
        &O::bodyFaceDarkFraction},
       {"bodyFaceMemoryFrames", "--body-face-memory", "frames", 0, 1000,
        "... of the last head found within this many frames, too", &O::bodyFaceMemoryFrames},
+      {"shirtLumaOfTorso", "--shirt-luma", "", 0, 4,
+       "where the shirt under the followed head is skin-coloured, skin darker than this "
+       "multiple of the chest's is cloth (0: off)",
+       &O::shirtLumaOfTorso},
+      {"shirtSkinFraction", "--shirt-skin-fraction", "", 0, 1,
+       "... the shirt is skin-coloured when this fraction of the chest's sample is skin",
+       &O::shirtSkinFraction},
+      {"shirtDarkerThanFace", "--shirt-face-luma", "", 0, 1,
+       "... and its skin is darker than this fraction of the face's", &O::shirtDarkerThanFace},
+      {"shirtSampleTopFaces", "--shirt-sample-top", "face widths", 0, 10,
+       "the chest's sample: from this far under the head's centre ...", &O::shirtSampleTopFaces},
+      {"shirtSampleBottomFaces", "--shirt-sample-bottom", "face widths", 0, 10,
+       "... to this far under it ...", &O::shirtSampleBottomFaces},
+      {"shirtSampleHalfWidthFaces", "--shirt-sample-half-width", "face widths", 0, 5,
+       "... and this far either side of its vertical", &O::shirtSampleHalfWidthFaces},
   };
   return table;
 }
@@ -190,6 +208,8 @@ Detections Detector::detect(const StereoFrame& frame) {
   const float remembered = m.sinceHead <= o.bodyFaceMemoryFrames ? m.faceLuma : 0;
   const FaceDetection* head = detail::followedHead(d.faces, region, remembered, o);
   const float headLuma = head ? head->skinLuma : 0;
+  const std::optional<FaceDetection> followed =
+      head ? std::optional<FaceDetection>(*head) : std::nullopt;
   std::vector<FaceDetection> kept;
   for (const FaceDetection& f : d.faces)
     ((head && detail::faceOnTheBody(f, *head, o)) || detail::muchDarkerThanHead(f, remembered, o)
@@ -199,10 +219,22 @@ Detections Detector::detect(const StereoFrame& frame) {
   d.faces = std::move(kept);  // `head` dangles from here
   if (headLuma > 0) m.faceLuma = headLuma;
   m.sinceHead = headLuma > 0 ? 0 : std::min(m.sinceHead + 1, kNoHead);
+  // The chest under the head, sampled before any cut, tells a shirt of
+  // skin's colour (shirt_skin.hpp); without a head, the last one's holds
+  // for as long as its luma does.
+  if (followed)
+    m.clothLuma = detail::clothLumaBelow(detail::sampleTorso(m.skin, m.grey, roi, *followed, o),
+                                         m.faceLuma, o);
+  else if (m.sinceHead > o.bodyFaceMemoryFrames)
+    m.clothLuma = 0;
   // Skin darker than a fraction of the face's: cloth whose chroma is
   // skin's, which joins a hand to its sleeve into one blob off the hand.
   if (o.minSkinLumaOfFace > 0 && m.faceLuma > 0) {
     cv::compare(m.grey, o.minSkinLumaOfFace * m.faceLuma, m.bright, cv::CMP_GE);
+    cv::bitwise_and(m.skin, m.bright, m.skin);
+  }
+  if (m.clothLuma > 0) {
+    cv::compare(m.grey, m.clothLuma, m.bright, cv::CMP_GE);
     cv::bitwise_and(m.skin, m.bright, m.skin);
   }
   for (const FaceDetection& f : d.faces) {

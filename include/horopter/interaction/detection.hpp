@@ -135,6 +135,21 @@ struct HOROPTER_API DetectorOptions {
   double bodyFaceDepthFraction = 0.15;
   double bodyFaceDarkFraction = 0.7;
   int bodyFaceMemoryFrames = 15;
+  // A shirt of skin's colour (tuning seeds 10146, 10486): its sleeves, lit
+  // from their side, pass the face-relative cut above and join a hand at
+  // rest into one blob up the arm. Under the followed head (or the last one,
+  // within bodyFaceMemoryFrames), the chest is sampled from
+  // shirtSampleTopFaces to shirtSampleBottomFaces head widths below its
+  // centre and shirtSampleHalfWidthFaces either side; where at least
+  // shirtSkinFraction of the sample is skin, with a median grey level under
+  // shirtDarkerThanFace of the face's, skin darker than shirtLumaOfTorso
+  // times that level is cloth (0: off).
+  double shirtLumaOfTorso = 1.3;
+  double shirtSkinFraction = 0.5;
+  double shirtDarkerThanFace = 0.8;
+  double shirtSampleTopFaces = 1.5;
+  double shirtSampleBottomFaces = 2.7;
+  double shirtSampleHalfWidthFaces = 0.5;
   int openPx = 5;          // morphological opening of the skin mask (removes speckle, thin strips)
   int closePx = 7;         // closing (joins a hand's pieces)
   int minHandAreaPx = 40;  // smallest skin component kept as a hand candidate
