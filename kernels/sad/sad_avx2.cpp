@@ -44,9 +44,10 @@
 //      left of the first makes warming up the same step). Groups go two at a
 //      time (32 disparities, sharing the broadcast); an odd last group alone.
 //      Every 16 pixels, their 16 cost vectors are transposed in registers
-//      and stored by lane: costs[k][i]. A pair does it every 8 pixels, per
-//      group 8 vectors transposed within 128-bit lanes and stored as
-//      halves (rows k and k + 8), so that 16 vectors are live, not 32.
+//      and stored by lane: costs[k][i]. A pair does it every 8 pixels,
+//      one group after the other (the left pixels broadcast twice), its 8
+//      vectors transposed within 128-bit lanes and stored as halves (rows
+//      k and k + 8), so that 8 cost vectors are live, not 32.
 //   2. Left decisions, 16 pixels per vector (4 vectors per pass): the least
 //      key over the lanes as above, so the smallest d wins ties; the
 //      uniqueness limit (32-bit, the /100 as a multiplication in double,
@@ -936,25 +937,51 @@ class Matcher {
         dropB += kLanes;
       }
     };
+    // One group's step at pixel j of a half block (pointers not moved).
+    const auto stepOne = [&](std::int16_t* col, const std::int16_t* drop, int j, int riOffset,
+                             __m256i& cost) HOROPTER_AVX2_TARGET {
+      __m256i c = load(col + j * kLanes);
+      if constexpr (kSlide) {
+        const __m256i l = _mm256_set1_epi16(li[j]);
+        c = _mm256_add_epi16(
+            c,
+            _mm256_maddubs_epi16(absDiffRows<kNarrow>(l, loadu(ri + riOffset - 2 * j)), plusMinus));
+        store(col + j * kLanes, c);
+      }
+      cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop + j * kLanes)));
+      return cost;
+    };
     if (i0 == 0) {
       for (int n = 0; n < window - 1; ++n)
         step(false);
     }
     std::int16_t* const base = costs(p * 2 * kLanes + sweepMin_ - minD_);
     // Half blocks of 8 pixels: each group's 8 cost vectors are transposed
-    // within 128-bit lanes and stored as halves (transpose8x16), so that 16
-    // vectors, not 32, are live (fewer spills) and no lane exchange is needed.
+    // within 128-bit lanes and stored as halves (transpose8x16), one group
+    // after the other, so that 8 cost vectors, not 16, are live (no spills)
+    // and no lane exchange is needed.
     constexpr int kHalf = kLanes / 2;
     for (int b = i0; b < i1; b += kHalf) {
-      __m256i v[kHalf], w[kHalf], t[kHalf];
+      __m256i v[kHalf], t[kHalf];
       if (b + kHalf <= pixels) {
 #pragma GCC unroll 8
-        for (int j = 0; j < kHalf; ++j) {
-          step(true);
-          v[j] = costA;
-          w[j] = costB;
-        }
+        for (int j = 0; j < kHalf; ++j)
+          v[j] = stepOne(colA, dropA, j, 0, costA);
+        transpose8x16(v, t);
+        storeHalves(base + b, rowLen, t);
+#pragma GCC unroll 8
+        for (int j = 0; j < kHalf; ++j)
+          v[j] = stepOne(colB, dropB, j, 2 * kLanes, costB);
+        transpose8x16(v, t);
+        storeHalves(base + kLanes * rowLen + b, rowLen, t);
+        colA += kHalf * kLanes;
+        colB += kHalf * kLanes;
+        dropA += kHalf * kLanes;
+        dropB += kHalf * kLanes;
+        li += kHalf;
+        ri -= 2 * kHalf;
       } else {
+        __m256i w[kHalf];
         for (int j = 0; j < kHalf; ++j) {
           if (b + j < pixels) {
             step(true);
@@ -964,11 +991,11 @@ class Matcher {
             v[j] = w[j] = _mm256_set1_epi16(kNoCost);
           }
         }
+        transpose8x16(v, t);
+        storeHalves(base + b, rowLen, t);
+        transpose8x16(w, t);
+        storeHalves(base + kLanes * rowLen + b, rowLen, t);
       }
-      transpose8x16(v, t);
-      storeHalves(base + b, rowLen, t);
-      transpose8x16(w, t);
-      storeHalves(base + kLanes * rowLen + b, rowLen, t);
     }
     s.colA = colA;
     s.colB = colB;
