@@ -258,20 +258,41 @@ HOROPTER_AVX2_TARGET void interleaveBytes(const std::uint8_t* a, const std::uint
 
 // Stores transpose8x16's w[c] for 8 pixels: low half to row c, high half
 // to row c + 8 (rows rowLen entries apart, from `row`, 16-byte aligned).
-// The stride is hidden from the optimizer (an empty asm): otherwise GCC
-// keeps the 16 row addresses of a block as loop invariants, spilled to the
-// stack, and loads one for each store; a running pointer costs one add per
-// row instead, and the high half is addressed as row + 8 * stride.
+// Written as asm so that the 16 rows are addressed from `row` and three
+// bases computed on the way (rows 4, 8, 12), with the stride S or 3S as a
+// scaled index: 3 address computations per 16 stores. From C++, GCC either
+// kept the 16 row addresses as loop invariants, spilled to the stack, or
+// (the stride hidden from it) walked a pointer with one add per row.
 [[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void storeHalves(std::int16_t* row,
                                                                     std::ptrdiff_t rowLen,
                                                                     const __m256i* w) {
-  std::ptrdiff_t stride = rowLen;
-  asm("" : "+r"(stride));
-  for (int c = 0; c < 8; ++c, row += stride) {
-    _mm_store_si128(reinterpret_cast<__m128i*>(row), _mm256_castsi256_si128(w[c]));
-    _mm_store_si128(reinterpret_cast<__m128i*>(row + 8 * stride),
-                    _mm256_extracti128_si256(w[c], 1));
-  }
+  const std::ptrdiff_t s = rowLen * static_cast<std::ptrdiff_t>(sizeof(std::int16_t));
+  const std::ptrdiff_t s3 = 3 * s;
+  std::int16_t* t;
+  asm volatile(
+      "vmovdqa %x[w0], (%[b])\n\t"
+      "vmovdqa %x[w1], (%[b],%[s])\n\t"
+      "vmovdqa %x[w2], (%[b],%[s],2)\n\t"
+      "vmovdqa %x[w3], (%[b],%[s3])\n\t"
+      "vmovdqa %x[w4], (%[b],%[s],4)\n\t"
+      "vmovdqa %x[w6], (%[b],%[s3],2)\n\t"
+      "vextracti128 $1, %[w0], (%[b],%[s],8)\n\t"
+      "vextracti128 $1, %[w4], (%[b],%[s3],4)\n\t"
+      "lea (%[b],%[s],4), %[t]\n\t"  // row 4
+      "vmovdqa %x[w5], (%[t],%[s])\n\t"
+      "vmovdqa %x[w7], (%[t],%[s3])\n\t"
+      "lea (%[b],%[s],8), %[t]\n\t"  // row 8
+      "vextracti128 $1, %[w1], (%[t],%[s])\n\t"
+      "vextracti128 $1, %[w2], (%[t],%[s],2)\n\t"
+      "vextracti128 $1, %[w3], (%[t],%[s3])\n\t"
+      "vextracti128 $1, %[w6], (%[t],%[s3],2)\n\t"
+      "lea (%[b],%[s3],4), %[t]\n\t"  // row 12
+      "vextracti128 $1, %[w5], (%[t],%[s])\n\t"
+      "vextracti128 $1, %[w7], (%[t],%[s3])"
+      : [t] "=&r"(t)
+      : [b] "r"(row), [s] "r"(s), [s3] "r"(s3), [w0] "x"(w[0]), [w1] "x"(w[1]), [w2] "x"(w[2]),
+        [w3] "x"(w[3]), [w4] "x"(w[4]), [w5] "x"(w[5]), [w6] "x"(w[6]), [w7] "x"(w[7])
+      : "memory");
 }
 
 // Eight int32 lanes divided by 100, truncated (0 <= n < 2^31), without a
@@ -937,20 +958,6 @@ class Matcher {
         dropB += kLanes;
       }
     };
-    // One group's step at pixel j of a half block (pointers not moved).
-    const auto stepOne = [&](std::int16_t* col, const std::int16_t* drop, int j, int riOffset,
-                             __m256i& cost) HOROPTER_AVX2_TARGET {
-      __m256i c = load(col + j * kLanes);
-      if constexpr (kSlide) {
-        const __m256i l = _mm256_set1_epi16(li[j]);
-        c = _mm256_add_epi16(
-            c,
-            _mm256_maddubs_epi16(absDiffRows<kNarrow>(l, loadu(ri + riOffset - 2 * j)), plusMinus));
-        store(col + j * kLanes, c);
-      }
-      cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(drop + j * kLanes)));
-      return cost;
-    };
     if (i0 == 0) {
       for (int n = 0; n < window - 1; ++n)
         step(false);
@@ -961,41 +968,74 @@ class Matcher {
     // after the other, so that 8 cost vectors, not 16, are live (no spills)
     // and no lane exchange is needed.
     constexpr int kHalf = kLanes / 2;
-    for (int b = i0; b < i1; b += kHalf) {
-      __m256i v[kHalf], t[kHalf];
-      if (b + kHalf <= pixels) {
+    int b = i0;
+    // Whole half blocks: past the warm-up the dropped column is always
+    // `window` columns behind, and group B's column sums a fixed distance
+    // after group A's, so one pointer addresses all four (the offsets
+    // hidden from the optimizer, which would otherwise keep a pointer for
+    // each and add to all of them at every step).
+    if (const int whole = (std::min(i1, pixels) - i0) / kHalf; whole > 0) {
+      // In bytes: an index register as it is.
+      std::ptrdiff_t toB = (colB - colA) * 2, toDrop = (dropA - colA) * 2;
+      const auto at = [](std::int16_t* q, std::ptrdiff_t bytes) HOROPTER_AVX2_TARGET {
+        return reinterpret_cast<std::int16_t*>(reinterpret_cast<char*>(q) + bytes);
+      };
+      std::int16_t* out = base + b;
+      const std::int16_t* const liEnd = li + whole * kHalf;
+      // One group's step at pixel j of the half block from col.
+      const auto stepOne = [&](std::int16_t* col, int j, int riOffset,
+                               __m256i& cost) HOROPTER_AVX2_TARGET {
+        __m256i c = load(col + j * kLanes);
+        if constexpr (kSlide) {
+          const __m256i l = _mm256_set1_epi16(li[j]);
+          c = _mm256_add_epi16(
+              c, _mm256_maddubs_epi16(absDiffRows<kNarrow>(l, loadu(ri + riOffset - 2 * j)),
+                                      plusMinus));
+          store(col + j * kLanes, c);
+        }
+        cost = _mm256_add_epi16(cost, _mm256_sub_epi16(c, load(at(col + j * kLanes, toDrop))));
+        return cost;
+      };
+      do {
+        // In the loop, so that the sums of offsets and constants are not
+        // hoisted out of it either.
+        asm("" : "+r"(toB), "+r"(toDrop));
+        __m256i v[kHalf], t[kHalf];
 #pragma GCC unroll 8
         for (int j = 0; j < kHalf; ++j)
-          v[j] = stepOne(colA, dropA, j, 0, costA);
+          v[j] = stepOne(colA, j, 0, costA);
         transpose8x16(v, t);
-        storeHalves(base + b, rowLen, t);
+        storeHalves(out, rowLen, t);
 #pragma GCC unroll 8
         for (int j = 0; j < kHalf; ++j)
-          v[j] = stepOne(colB, dropB, j, 2 * kLanes, costB);
+          v[j] = stepOne(at(colA, toB), j, 2 * kLanes, costB);
         transpose8x16(v, t);
-        storeHalves(base + kLanes * rowLen + b, rowLen, t);
+        storeHalves(out + kLanes * rowLen, rowLen, t);
         colA += kHalf * kLanes;
-        colB += kHalf * kLanes;
-        dropA += kHalf * kLanes;
-        dropB += kHalf * kLanes;
         li += kHalf;
         ri -= 2 * kHalf;
-      } else {
-        __m256i w[kHalf];
-        for (int j = 0; j < kHalf; ++j) {
-          if (b + j < pixels) {
-            step(true);
-            v[j] = costA;
-            w[j] = costB;
-          } else {
-            v[j] = w[j] = _mm256_set1_epi16(kNoCost);
-          }
+        out += kHalf;
+      } while (li != liEnd);
+      b += whole * kHalf;
+      colB = at(colA, toB);
+      dropA = at(colA, toDrop);
+      dropB = at(colB, toDrop);
+    }
+    for (; b < i1; b += kHalf) {
+      __m256i v[kHalf], w[kHalf], t[kHalf];
+      for (int j = 0; j < kHalf; ++j) {
+        if (b + j < pixels) {
+          step(true);
+          v[j] = costA;
+          w[j] = costB;
+        } else {
+          v[j] = w[j] = _mm256_set1_epi16(kNoCost);
         }
-        transpose8x16(v, t);
-        storeHalves(base + b, rowLen, t);
-        transpose8x16(w, t);
-        storeHalves(base + kLanes * rowLen + b, rowLen, t);
       }
+      transpose8x16(v, t);
+      storeHalves(base + b, rowLen, t);
+      transpose8x16(w, t);
+      storeHalves(base + kLanes * rowLen + b, rowLen, t);
     }
     s.colA = colA;
     s.colB = colB;
