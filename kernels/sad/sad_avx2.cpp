@@ -16,16 +16,16 @@
 //   to mark "no cost" (above every real cost, never within a limit).
 //
 //   Keys: where the bound leaves room, a cost C of lane k is kept as the key
-//   G * C + (k mod G), G = 2^s with the largest s <= 3 such that
-//   G * bound + G - 1 < 65535 (s = 3 for x-Sobel inputs with blocks up to 11,
-//   s = 0, plain costs, near the limit). The sums carry it for free: column
-//   sums add G * |L - R| and the window sums start at bias + (k mod G), so
-//   the low s bits never change. Over G consecutive lanes (an aligned group),
-//   the least key is the least cost at its smallest k, by a plain min; the
-//   winner searches take that per group and merge the groups in increasing
-//   k with a strict < on the cost (the best key with its low bits cleared),
-//   so ties still go to the smallest d. C <= limit iff key <= G * limit +
-//   G - 1. Costs are read back as key >> s; "no cost" stays 65535.
+//   G * C + q, q = k / Q with Q = count / G, G = 2^s with the largest s <= 3
+//   such that G * bound + G - 1 < 65535 (s = 3 for x-Sobel inputs with
+//   blocks up to 11, s = 0, plain costs, near the limit). The sums carry it
+//   for free: column sums add G * |L - R| and the window sums start at
+//   bias + q, so the low s bits never change. Over the G lanes j, j + Q, ..
+//   (group j), the least key is the least cost at its smallest k, by a
+//   plain min; the winner searches take that per group and merge the groups
+//   in increasing j with a strict < on the whole key, so ties still go to
+//   the smallest d (leastKeys). C <= limit iff key <= G * limit + G - 1.
+//   Costs are read back as key >> s; "no cost" stays 65535.
 //
 //   1. Sweep (running sums, OpenCV's StereoBM scheme), one group of 16
 //      disparities at a time (lanes d = minD + 16g + k): columnSum[g][x]
@@ -331,36 +331,40 @@ HOROPTER_AVX2_TARGET inline __m256i divideBy100Below2Pow23(__m256i n) {
 
 // The least key over lanes k = 0 .. count - 1 (lane k's 16 entries at
 // c + k * step), for kBlocks (4) blocks of 16 consecutive entries, and
-// index[k0] (a vector) of the group of G = 2^kShift lanes k0 .. k0 + G - 1
-// that holds it: within a group the least key is the least (cost, k mod G),
-// i.e. the least cost at its smallest k; across groups a later one wins only
-// with a strictly smaller cost (its key below the best key's low bits
-// cleared), so ties go to the smallest k. The caller adds the key's low
-// bits (k mod G) to the index.
+// index[j] (a vector) of the group j that holds it. With G = 2^kShift and
+// Q = count / G, group j is the lanes j + qQ, q = 0 .. G - 1, whose keys
+// carry q in their low bits (G * cost + q): the least key of a group is
+// its least (cost, q), i.e. the least cost at its smallest k. The groups go
+// in increasing j, and a later one wins only with a strictly smaller key:
+// over (cost, q, j) that is the least (cost, k), as k = qQ + j with j < Q.
+// (Groups of G consecutive lanes, keys k mod G, needed the best key's low
+// bits cleared before each compare: 4 instructions per merge, now 3.) The
+// caller adds Q times the key's low bits to the index.
 template <int kShift, int kBlocks>
 [[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void leastKeys(const std::int16_t* c,
                                                                   std::ptrdiff_t step, int count,
                                                                   const std::int16_t* indexOf,
                                                                   __m256i* best, __m256i* index) {
   constexpr int kGroup = 1 << kShift;
+  const int groups = count >> kShift;
+  const std::ptrdiff_t groupStep = groups * step;
   const auto groupMin = [&](const std::int16_t* p) HOROPTER_AVX2_TARGET {
     __m256i m = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
-    for (int j = 1; j < kGroup; ++j)
-      m = _mm256_min_epi16(m, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + j * step)));
+    for (int q = 1; q < kGroup; ++q)
+      m = _mm256_min_epi16(m,
+                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + q * groupStep)));
     return m;
   };
-  const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~(kGroup - 1)));
+  // As asm: from intrinsics GCC took the min first, over the best key's
+  // register, and copied the best key for the compare (4 instructions).
   const auto merge = [&](__m256i& bestN, __m256i& indexN, __m256i now, __m256i indexK)
                          HOROPTER_AVX2_TARGET {
                            __m256i better;
-                           if constexpr (kGroup == 1) {
-                             better = _mm256_cmpgt_epi16(bestN, now);
-                             bestN = _mm256_min_epi16(bestN, now);
-                           } else {
-                             better = _mm256_cmpgt_epi16(_mm256_and_si256(bestN, high), now);
-                             bestN = blendWords(bestN, now, better);
-                           }
-                           indexN = blendWords(indexN, indexK, better);
+                           asm("vpcmpgtw %[now], %[best], %[better]\n\t"
+                               "vpminsw %[now], %[best], %[best]\n\t"
+                               "vpblendvb %[better], %[indexK], %[index], %[index]"
+                               : [better] "=&x"(better), [best] "+x"(bestN), [index] "+x"(indexN)
+                               : [now] "x"(now), [indexK] "xm"(indexK));
                          };
   // Named accumulators, not arrays: with arrays GCC copies every one at
   // every step.
@@ -368,9 +372,9 @@ template <int kShift, int kBlocks>
   __m256i best0 = groupMin(c), best1 = groupMin(c + kLanes), best2 = groupMin(c + 2 * kLanes),
           best3 = groupMin(c + 3 * kLanes);
   __m256i index0 = load(indexOf), index1 = index0, index2 = index0, index3 = index0;
-  for (int k0 = kGroup; k0 < count; k0 += kGroup) {
-    c += kGroup * step;
-    const __m256i indexK = load(indexOf + k0 * kLanes);
+  for (int j = 1; j < groups; ++j) {
+    c += step;
+    const __m256i indexK = load(indexOf + j * kLanes);
     merge(best0, index0, groupMin(c), indexK);
     merge(best1, index1, groupMin(c + kLanes), indexK);
     merge(best2, index2, groupMin(c + 2 * kLanes), indexK);
@@ -450,10 +454,7 @@ class Matcher {
         keyShift_(keyShift),
         narrow_(narrow),
         smallProducts_(smallProducts),
-        keyInit_(_mm256_add_epi16(
-            _mm256_set1_epi16(static_cast<std::int16_t>(kBias)),
-            _mm256_and_si256(_mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7),
-                             _mm256_set1_epi16(static_cast<std::int16_t>((1 << keyShift) - 1))))),
+        keyInit_(static_cast<std::size_t>(sweepGroups_) * kLanes),
         columnSum_(static_cast<std::size_t>(sweepGroups_) * cols_ * kLanes),
         columnTexture_(cols_ + kLanes),
         texturePrefix_(cols_ + kLanes),
@@ -487,6 +488,14 @@ class Matcher {
     // Rows -1 and count, the edges and the columns past the last pixel hold
     // "no cost": never a winner, never within a uniqueness limit (< 65535).
     std::fill_n(costs_.get(), static_cast<std::size_t>(costRows()) * rowLen_, kNoCost);
+    // Each lane's key bits: k / (count / G) over the range's lanes, the
+    // same over a folded guard's below them (see leastKeys).
+    const int guardLanes = guardGroups_ * kLanes;
+    for (int k = -guardLanes; k < count_; ++k) {
+      const int bits =
+          k < 0 ? (k + guardLanes) / (guardLanes >> keyShift) : k / (count_ >> keyShift);
+      keyInit_.get()[k + guardLanes] = static_cast<std::int16_t>(kBias + bits);
+    }
     for (int k = 0; k < count_; ++k) {
       std::fill_n(laneOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(k));
       std::fill_n(disparityOf_.get() + k * kLanes, kLanes, static_cast<std::int16_t>(minD_ + k));
@@ -801,7 +810,8 @@ class Matcher {
       s.dropB = column(2 * p + 1, xa_ - 1);
       s.ri = rightPairs_.get() + 2 * (guardGroups_ * kLanes + reversedBase(xa_) + p * 2 * kLanes);
       s.li = reinterpret_cast<const std::uint8_t*>(leftPairs_.get());
-      s.costA = s.costB = keyInit_;
+      s.costA = load(keyInit_.get() + 2 * p * kLanes);
+      s.costB = load(keyInit_.get() + (2 * p + 1) * kLanes);
     }
     if (odd) {
       const int g = sweepGroups_ - 1;
@@ -810,7 +820,7 @@ class Matcher {
       s.dropA = column(g, xa_ - 1);
       s.ri = rightPairs_.get() + 2 * (guardGroups_ * kLanes + reversedBase(xa_) + g * kLanes);
       s.li = reinterpret_cast<const std::uint8_t*>(leftPairs_.get());
-      s.costA = keyInit_;
+      s.costA = load(keyInit_.get() + g * kLanes);
     }
 
     std::int16_t* outDisparity = disparity_.row<std::int16_t>(y);
@@ -1144,8 +1154,10 @@ class Matcher {
     const __m256i zero = _mm256_setzero_si256();
     const __m256i key = _mm256_xor_si256(bestKey, bias16);
     const __m256i least = _mm256_srli_epi16(key, kShift);
-    const __m256i b =
-        _mm256_add_epi16(lane, _mm256_and_si256(key, _mm256_set1_epi16((1 << kShift) - 1)));
+    // The group's index plus its key bits times count / G (leastKeys).
+    const __m256i b = _mm256_add_epi16(
+        lane, _mm256_mullo_epi16(_mm256_and_si256(key, _mm256_set1_epi16((1 << kShift) - 1)),
+                                 _mm256_set1_epi16(static_cast<std::int16_t>(count_ >> kShift))));
 
     const __m256i rowLenV = _mm256_set1_epi32(rowLen_);
     const __m256i step8 = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -1253,8 +1265,9 @@ class Matcher {
     leastKeys<kShift, kBlocks>(costs(0) + (xr0 + minD_ - x0_), rowLen_ + 1, count_,
                                disparityOf_.get(), best, d);
     const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
+    const __m256i groups = _mm256_set1_epi16(static_cast<std::int16_t>(count_ >> kShift));
     for (int n = 0; n < kBlocks; ++n)
-      d[n] = _mm256_add_epi16(d[n], _mm256_and_si256(best[n], lowBits));
+      d[n] = _mm256_add_epi16(d[n], _mm256_mullo_epi16(_mm256_and_si256(best[n], lowBits), groups));
     if (guardGroups_ > 0) {
       // A folded guard's candidates: its lanes' least key (the smallest g on
       // ties), written as min(g, minD - 2); it wins where its cost is <= the
@@ -1266,9 +1279,12 @@ class Matcher {
                                  guardDisparityOf_.get(), guardBest, guardD);
       const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(~((1 << kShift) - 1)));
       const __m256i top = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 2));
+      const __m256i guardGroupsV = _mm256_set1_epi16(static_cast<std::int16_t>(lanes >> kShift));
       for (int n = 0; n < kBlocks; ++n) {
         const __m256i g = _mm256_min_epi16(
-            _mm256_add_epi16(guardD[n], _mm256_and_si256(guardBest[n], lowBits)), top);
+            _mm256_add_epi16(guardD[n], _mm256_mullo_epi16(_mm256_and_si256(guardBest[n], lowBits),
+                                                           guardGroupsV)),
+            top);
         const __m256i loses = _mm256_cmpgt_epi16(_mm256_and_si256(guardBest[n], high),
                                                  _mm256_and_si256(best[n], high));
         d[n] = _mm256_blendv_epi8(g, d[n], loses);
@@ -1322,14 +1338,15 @@ class Matcher {
   const int pixels_, padded_, edge_, rowLen_;
   const bool useTexture_;
   // Costs are kept as keys G * C + (k mod G), G = 2^keyShift (see Strategy);
-  // keyInit_ is the running sums' start: the bias and each lane's k mod G.
+  // keyInit_ is the running sums' start: the bias and each lane's key bits,
+  // [sweep group][16].
   const int keyShift_;
   // Every |L - R| <= 127: the sweep takes it as a signed byte difference.
   const bool narrow_;
   // Every cost times the uniqueness ratio is below 2^23: the limit's
   // division by 100 is done in float (divideBy100Below2Pow23).
   const bool smallProducts_;
-  const __m256i keyInit_;
+  AlignedArray<std::int16_t> keyInit_;
   AlignedArray<std::int16_t> columnSum_;       // [g][x - xa + 1][16]; column xa - 1 stays zero
   AlignedArray<std::uint16_t> columnTexture_;  // [x - xa + 1]; index 0 and the tail stay zero
   AlignedArray<int> texturePrefix_;            // [j]: prefix sums of the texture column sums
