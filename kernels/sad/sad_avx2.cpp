@@ -98,6 +98,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <numeric>
 #include <type_traits>
 
 #include "common/cpu_features.hpp"
@@ -397,6 +398,29 @@ template <int kShift, int kBlocks>
   index[3] = index3;
 }
 
+// The uniqueness limit's floor(c * r / 100) as floor(c * M / 2^s) (one
+// vpmulhuw, high 16 bits, and a shift by s - 16): s is the largest in
+// [16, 31] with M = ceil(2^s r / 100) <= 65535 (0: none, r >= 100). With
+// e = 100 M - 2^s r >= 0 and c r = 100 q + f, c M / 2^s = q + (f +
+// c e / 2^s) / 100, and f is a multiple of g = gcd(r, 100), at most
+// 100 - g: the floor is q for every c <= bound iff bound * e < g * 2^s
+// suffices, which limitMultiplier checks (M, or 0 where it fails: the
+// limit is then computed in 32 bits).
+inline int limitShiftFor(int r) {
+  int s = 0;
+  for (int t = 16; t < 32 && r > 0; ++t)
+    if (((std::int64_t{1} << t) * r + 99) / 100 <= 0xFFFF) s = t;
+  return s;
+}
+inline int limitMultiplier(int r, std::int64_t bound) {
+  const int s = limitShiftFor(r);
+  if (s == 0 || bound > 0xFFFF) return 0;
+  const std::int64_t scale = std::int64_t{1} << s;
+  const std::int64_t m = (scale * r + 99) / 100;
+  const std::int64_t e = 100 * m - scale * r;
+  return bound * e < std::gcd(r, 100) * scale ? static_cast<int>(m) : 0;
+}
+
 // Entries per row of costs for at least n (a multiple of 16): the least
 // count >= n that is 32 more than a multiple of 64, i.e. an odd number of
 // 64-byte lines. The decisions read the rows of all lanes together, a few
@@ -433,7 +457,7 @@ class Matcher {
                                const ConstImageView& texture, const StereoParams& params,
                                const BelowRangeGuard& guard, const ImageView& disparity,
                                const ImageView& winnerRight, const MatchRegion& region,
-                               int keyShift, bool narrow, bool smallProducts)
+                               int keyShift, bool narrow, bool smallProducts, int costBound)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -461,6 +485,8 @@ class Matcher {
         keyShift_(keyShift),
         narrow_(narrow),
         smallProducts_(smallProducts),
+        limitMultiplier_(limitMultiplier(params.uniquenessRatio, costBound)),
+        limitShift_(limitMultiplier_ > 0 ? limitShiftFor(params.uniquenessRatio) - 16 : 0),
         keyInit_(static_cast<std::size_t>(sweepGroups_) * kLanes),
         columnSum_(static_cast<std::size_t>(sweepGroups_) * cols_ * kLanes),
         columnTexture_(cols_ + kLanes),
@@ -1082,6 +1108,23 @@ class Matcher {
     // kBlocks blocks of 16 pixels per pass over the lanes: independent
     // chains, and whole cache lines of each lane's row.
     constexpr int kBlocks = 4;
+    const __m256i limitMul = _mm256_set1_epi16(static_cast<std::int16_t>(limitMultiplier_));
+    const __m128i limitShift = _mm_cvtsi32_si128(limitShift_);
+    // The uniqueness limit least + least * ratio / 100 (integer division)
+    // in 32 bits, saturated at 65535: where limitMultiplier finds no exact
+    // multiplier.
+    const auto limit32 = [&](__m256i least) HOROPTER_AVX2_TARGET {
+      const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
+      const __m256i minHi = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(least, 1));
+      const __m256i ratioV = _mm256_set1_epi32(ratio);
+      const __m256i productLo = _mm256_mullo_epi32(minLo, ratioV);
+      const __m256i productHi = _mm256_mullo_epi32(minHi, ratioV);
+      const __m256i limitLo = _mm256_add_epi32(
+          minLo, smallProducts_ ? divideBy100Below2Pow23(productLo) : divideBy100(productLo));
+      const __m256i limitHi = _mm256_add_epi32(
+          minHi, smallProducts_ ? divideBy100Below2Pow23(productHi) : divideBy100(productHi));
+      return _mm256_permute4x64_epi64(_mm256_packus_epi32(limitLo, limitHi), 0xD8);
+    };
     for (int i0 = from; i0 < to; i0 += kBlocks * kLanes) {
       __m256i best[kBlocks], lane[kBlocks];
       const std::int16_t* c = costs(0) + i0;
@@ -1097,16 +1140,14 @@ class Matcher {
         limit[n] = within[n] = _mm256_setzero_si256();
       for (int n = 0; n < kBlocks && ratio > 0; ++n) {
         const __m256i least = _mm256_srli_epi16(_mm256_xor_si256(best[n], bias16), kShift);
-        const __m256i minLo = _mm256_cvtepu16_epi32(_mm256_castsi256_si128(least));
-        const __m256i minHi = _mm256_cvtepu16_epi32(_mm256_extracti128_si256(least, 1));
-        const __m256i ratioV = _mm256_set1_epi32(ratio);
-        const __m256i productLo = _mm256_mullo_epi32(minLo, ratioV);
-        const __m256i productHi = _mm256_mullo_epi32(minHi, ratioV);
-        const __m256i limitLo = _mm256_add_epi32(
-            minLo, smallProducts_ ? divideBy100Below2Pow23(productLo) : divideBy100(productLo));
-        const __m256i limitHi = _mm256_add_epi32(
-            minHi, smallProducts_ ? divideBy100Below2Pow23(productHi) : divideBy100(productHi));
-        limit[n] = _mm256_permute4x64_epi64(_mm256_packus_epi32(limitLo, limitHi), 0xD8);
+        if (limitMultiplier_ > 0) {
+          // least + floor(least * ratio / 100) = least + floor(least * M
+          // / 2^s), saturated at 65535 (limitMultiplier).
+          limit[n] = _mm256_adds_epu16(
+              least, _mm256_srl_epi16(_mm256_mulhi_epu16(least, limitMul), limitShift));
+        } else {
+          limit[n] = limit32(least);
+        }
         // (min(limit, 65535 >> s) << s) + G, saturated at 65535, biased:
         // G * limit + G - 1 + 1, or 0x7FFF where that is 65535 or more.
         keyLimit[n] = _mm256_xor_si256(
@@ -1369,6 +1410,10 @@ class Matcher {
   // Every cost times the uniqueness ratio is below 2^23: the limit's
   // division by 100 is done in float (divideBy100Below2Pow23).
   const bool smallProducts_;
+  // M > 0 where floor(c * ratio / 100) = floor(c * M / 2^(16 + limitShift_))
+  // for every cost c this call can have: the uniqueness limit in 16 bits,
+  // one vpmulhuw and a shift (limitMultiplier).
+  const int limitMultiplier_, limitShift_;
   AlignedArray<std::int16_t> keyInit_;
   AlignedArray<std::int16_t> columnSum_;       // [g][x - xa + 1][16]; column xa - 1 stays zero
   AlignedArray<std::uint16_t> columnTexture_;  // [x - xa + 1]; index 0 and the tail stay zero
@@ -1443,7 +1488,7 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
     ++shift;
   const bool smallProducts = maxDiff * side * side * params.uniquenessRatio < (1 << 23);
   Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift,
-                  maxDiff <= 127, smallProducts);
+                  maxDiff <= 127, smallProducts, static_cast<int>(maxDiff * side * side));
   matcher.run(region.y0, region.y1);
 }
 
