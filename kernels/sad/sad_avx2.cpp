@@ -1058,6 +1058,7 @@ class Matcher {
         li += kHalf;
         ri -= 2 * kHalf;
         out += kHalf;
+        asm("" : "+x"(costA), "+x"(costB));
       } while (li != liEnd);
       b += whole * kHalf;
       colB = at(colA, toB);
