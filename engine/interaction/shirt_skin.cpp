@@ -49,8 +49,8 @@ TorsoSample sampleTorso(const cv::Mat& skin, const cv::Mat& grey, const cv::Rect
 }
 
 float clothLumaBelow(const TorsoSample& torso, float faceLuma, const DetectorOptions& o) {
-  const bool skinColoured = torso.pixels > 0 && torso.skinLuma > 0 &&
-                            torso.skinFraction >= o.shirtSkinFraction;
+  const bool skinColoured =
+      torso.pixels > 0 && torso.skinLuma > 0 && torso.skinFraction >= o.shirtSkinFraction;
   const bool darkerThanFace = faceLuma > 0 && torso.skinLuma < o.shirtDarkerThanFace * faceLuma;
   if (!(o.shirtLumaOfTorso > 0) || !skinColoured || !darkerThanFace) return 0;
   return static_cast<float>(o.shirtLumaOfTorso * torso.skinLuma);

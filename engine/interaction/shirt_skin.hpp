@@ -16,9 +16,9 @@ namespace horopter::detail {
 // What the chest under a head shows: how much of it is skin, and that
 // skin's median grey level.
 struct TorsoSample {
-  int pixels = 0;           // of the sample box inside the searched region
-  float skinFraction = 0;   // of those, classified skin
-  float skinLuma = 0;       // the median grey level of those skin pixels (0: none)
+  int pixels = 0;          // of the sample box inside the searched region
+  float skinFraction = 0;  // of those, classified skin
+  float skinLuma = 0;      // the median grey level of those skin pixels (0: none)
 };
 
 // The box the chest is sampled in, in image pixels: under the head's centre
