@@ -161,9 +161,14 @@ void LossDiagnosis::add(const TrialFrame& t, const TrialOptions& o) {
     }
     ++counts[part][static_cast<int>(cause)];
     if (log) {
-      std::fprintf(
-          log, "frame %lld %s %s: truth (%.0f, %.0f) track", static_cast<long long>(f.index),
-          part == 0 ? "head" : (part == 1 ? "left" : "right"), lossCauseName(cause), at.x, at.y);
+      // The seed: trials run in parallel (--jobs) interleave their lines.
+      // The part's true disparity tells a part too near for the search
+      // range from one the right view does not see (x < d).
+      const float z = truth3d[part].z;
+      std::fprintf(log, "seed %llu frame %lld %s %s: truth (%.0f, %.0f) true-d %.1f track",
+                   static_cast<unsigned long long>(o.seed), static_cast<long long>(f.index),
+                   part == 0 ? "head" : (part == 1 ? "left" : "right"), lossCauseName(cause), at.x,
+                   at.y, z > 0 ? t.focalPx * t.baselineM / z : 0.0);
       if (track[part]->tracked)
         std::fprintf(log, " (%.0f, %.0f)%s", track[part]->image.x, track[part]->image.y,
                      track[part]->observed ? "" : " coasting");
