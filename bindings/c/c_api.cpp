@@ -114,6 +114,7 @@ void paramsOf(const horopter_stereo_params& c, StereoParams& s, MedianParams& m)
   s.disp12MaxDiff = c.disp12_max_diff;
   s.speckleWindowSize = c.speckle_window_size;
   s.speckleRange = c.speckle_range;
+  s.leftBand = c.left_band;
   m.kernelSize = c.median_kernel_size;
   m.minValidToFill = c.median_min_valid;
 }
@@ -161,6 +162,7 @@ void horopter_stereo_params_default(horopter_stereo_params* params) {
   params->disp12_max_diff = s.disp12MaxDiff;
   params->speckle_window_size = s.speckleWindowSize;
   params->speckle_range = s.speckleRange;
+  params->left_band = s.leftBand;
   params->median_kernel_size = m.kernelSize;
   params->median_min_valid = m.minValidToFill;
 }

@@ -31,6 +31,7 @@ constexpr Rename kRenames[] = {
     {"disp12MaxDiff", "disp12_max_diff"},
     {"speckleWindowSize", "speckle_window_size"},
     {"speckleRange", "speckle_range"},
+    {"leftBand", "left_band"},
     {"kernelSize", "median_kernel_size"},
     {"minValidToFill", "median_min_valid"},
     {"inFlight", "in_flight"},

@@ -84,6 +84,8 @@ typedef struct horopter_stereo_params {
   int speckle_range;       /* in 1/16 px, as cv::StereoBM */
   int median_kernel_size;  /* hole-filling median: 0 (off), 3 or 5 */
   int median_min_valid;    /* valid pixels needed to fill a hole; 0 = more than half the window */
+  int left_band;           /* match the left columns the whole range misses where >= this many
+                              disparities fit; 0 = off (0..num_disparities) */
 } horopter_stereo_params;
 
 /* Fills *params with the library's defaults (those of `horopter disparity`). */

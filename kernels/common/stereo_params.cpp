@@ -38,6 +38,10 @@ const IntOption<StereoParams> kStereoOptions[] = {
      &StereoParams::speckleWindowSize},
     {"speckleRange", "--speckle-range", "1/16 px", 0, 2047 * kDisparityScale,
      "largest step between neighbours of one blob", &StereoParams::speckleRange},
+    {"leftBand", "--left-band", "px", 0, 1024,
+     "match the left columns the whole range misses over the disparities that fit there, "
+     "where at least this many do; 0: off",
+     &StereoParams::leftBand},
 };
 
 const IntOption<MedianParams> kMedianOptions[] = {
@@ -81,6 +85,8 @@ void validate(const StereoParams& p) {
     checkRange(o, p);
   require(p.numDisparities % 16 == 0,
           "numDisparities must be a positive multiple of 16" + got(p.numDisparities));
+  require(p.leftBand <= p.numDisparities,
+          "leftBand must be within 0..numDisparities (0 = off)" + got(p.leftBand));
   // Every output, the invalid marker included, must fit int16 in 1/16 px.
   const long lowest = (static_cast<long>(p.minDisparity) - 1) * kDisparityScale;
   const long highest = (static_cast<long>(p.minDisparity) + p.numDisparities) * kDisparityScale;

@@ -11,9 +11,12 @@ namespace horopter {
 
 // The pixels where every disparity of the range can be evaluated with the
 // whole window inside both images: rows [y0, y1), columns [x0, x1). Empty
-// (x0 >= x1 or y0 >= y1) when the image is too small for the range.
+// (x0 >= x1 or y0 >= y1) when the image is too small for the range. The left
+// band (params.leftBand, sad_scalar.cpp) is the columns [bandX0, x0), each
+// matched over the part of the range that fits; bandX0 = x0 without it.
 struct MatchRegion {
   int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  int bandX0 = 0;
   bool empty() const { return x0 >= x1 || y0 >= y1; }
 };
 MatchRegion matchRegion(int width, int height, const StereoParams& params);
@@ -25,10 +28,35 @@ inline int guardCount(const StereoParams& params, const BelowRangeGuard& guard) 
 }
 
 namespace scalar {
+// Which part of the matcher's work matchColumns does (the defaults: all).
+struct ColumnWindow {
+  int costedEnd = 1 << 30;  // left pixels costed: [bandX0, min(x1, costedEnd))
+  int leftEnd = 1 << 30;    // left decisions written: the costed ones below this
+  int rightEnd = 1 << 30;   // right winners written: xr in [0, rightEnd), from the costed pixels
+};
+
+// The reference over the window's columns, on rows already filled with the
+// invalid marker and "no winner" (matchBlocks fills them, then calls it
+// with the whole window).
+void matchColumns(const ConstImageView& left, const ConstImageView& right,
+                  const ConstImageView& texture, const StereoParams& params,
+                  const BelowRangeGuard& guard, const ImageView& disparity,
+                  const ImageView& winnerRight, RowRange rows, const ColumnWindow& window);
+
 void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const BelowRangeGuard& guard, const ImageView& disparity,
                  const ImageView& winnerRight, RowRange rows);
+
+// The left band alone, after a backend's region-only pass over the same rows:
+// writes the band's left pixels and every right winner left of x0 -
+// minDisparity (whose candidates include band pixels), from costs over the
+// columns [bandX0, x0 + numDisparities - 1); nothing without a band. A
+// region-only pass followed by this equals matchBlocks.
+void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
+                   const ConstImageView& texture, const StereoParams& params,
+                   const BelowRangeGuard& guard, const ImageView& disparity,
+                   const ImageView& winnerRight, RowRange rows);
 }  // namespace scalar
 
 // AVX2 version (kernels/sad/sad_avx2.cpp): bit-exact with scalar; call only

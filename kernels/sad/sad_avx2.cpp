@@ -1547,6 +1547,9 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
   Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift,
                   maxDiff <= 127, smallProducts, static_cast<int>(maxDiff * side * side));
   matcher.run(region.y0, region.y1);
+  // The left band (params.leftBand) is a small triangle of the work, beside
+  // the region's sweep: the reference's own loops over its columns.
+  scalar::matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows);
 }
 
 }  // namespace horopter::avx2

@@ -12,6 +12,17 @@
 //   disparity is invalid ((minDisparity - 1) * 16) and winnerRight is
 //   minDisparity - 1.
 //
+//   Left band (params.leftBand = m > 0): the left view's columns left of the
+//   region, x in [bx0, x0) with bx0 = max(r, r + minDisparity + m - 1), whose
+//   windows fit in the right image for at least m disparities of the range,
+//   are matched too, each over its own range d in [minDisparity, top(x)],
+//   top(x) = x - r (the window's left edge at the right image's column 0).
+//   Every rule below holds for a band pixel with top(x) in place of maxD:
+//   winner, uniqueness, the guard, the sub-pixel fit mirrored at top(x), and
+//   the right winner, whose candidates are the left pixels of the band and
+//   the region with d <= top(xr + d). top(x) = maxD in the region; m = 0
+//   (the default) or m > numDisparities leaves no band (bx0 = x0).
+//
 //   Cost: C(x, y, d) = sum over |i|, |j| <= r of |L(x+i, y+j) - R(x+i-d, y+j)|,
 //   exact in int32 (at most 255 * 255^2 < 2^31).
 //
@@ -52,7 +63,8 @@
 //
 //   Right winner (for the left-right check, from the same costs): for the
 //   right pixel (xr, y), the d of least C(xr + d, y, d) over the d whose left
-//   pixel xr + d lies in the region's columns; ties go to the smallest d;
+//   pixel xr + d lies in the region's (or the band's) columns, with
+//   d <= top(xr + d); ties go to the smallest d;
 //   minDisparity - 1 where no d qualifies. Texture and uniqueness play no part.
 //   With the guard, a right pixel that has a winner in the range also weighs
 //   the checked g_k whose left pixel xr + g_k lies in the region's columns
@@ -85,6 +97,9 @@ MatchRegion matchRegion(int width, int height, const StereoParams& params) {
   region.x1 = std::min(width - r, width - r + params.minDisparity);
   region.y0 = r;
   region.y1 = height - r;
+  region.bandX0 = region.x0;
+  if (params.leftBand > 0)
+    region.bandX0 = std::clamp(r + params.minDisparity + params.leftBand - 1, r, region.x0);
   return region;
 }
 
@@ -92,13 +107,13 @@ namespace scalar {
 
 namespace {
 
-// Decides one left pixel from its costs over the range (costs[k] is the cost
-// of disparity minDisparity + k). Returns the disparity in 1/16 px or invalid.
-// guardLeast: the least cost of the checked disparities below the range
-// that count for this pixel (INT32_MAX: none).
-std::int16_t decidePixel(const std::int32_t* costs, int textureSum, std::int32_t guardLeast,
-                         const StereoParams& params) {
-  const int count = params.numDisparities;
+// Decides one left pixel from its costs over its range (costs[k] is the cost
+// of disparity minDisparity + k, k < count: numDisparities in the region,
+// top(x) - minDisparity + 1 in the band). Returns the disparity in 1/16 px
+// or invalid. guardLeast: the least cost of the checked disparities below
+// the range that count for this pixel (INT32_MAX: none).
+std::int16_t decidePixel(const std::int32_t* costs, int count, int textureSum,
+                         std::int32_t guardLeast, const StereoParams& params) {
   const std::int16_t invalid = invalidDisparity(params);
 
   int best = 0;
@@ -122,9 +137,10 @@ std::int16_t decidePixel(const std::int32_t* costs, int textureSum, std::int32_t
     if (guardLeast <= limit) return invalid;
   }
 
+  // A range of one disparity has no neighbour to fit: offset 0.
   const std::int64_t c0 = costs[best];
-  std::int64_t cm = best > 0 ? costs[best - 1] : costs[best + 1];
-  std::int64_t cp = best < count - 1 ? costs[best + 1] : costs[best - 1];
+  std::int64_t cm = best > 0 ? costs[best - 1] : costs[std::min(best + 1, count - 1)];
+  std::int64_t cp = best < count - 1 ? costs[best + 1] : costs[std::max(best - 1, 0)];
   const std::int64_t den = cm + cp - 2 * c0 + std::abs(cm - cp);
   const std::int64_t off = den > 0 ? (cm - cp) * 256 / den : 0;
   const std::int64_t d = params.minDisparity + best;
@@ -133,34 +149,36 @@ std::int16_t decidePixel(const std::int32_t* costs, int textureSum, std::int32_t
 
 }  // namespace
 
-void matchBlocks(const ConstImageView& left, const ConstImageView& right,
-                 const ConstImageView& texture, const StereoParams& params,
-                 const BelowRangeGuard& guard, const ImageView& disparity,
-                 const ImageView& winnerRight, RowRange rows) {
+void matchColumns(const ConstImageView& left, const ConstImageView& right,
+                  const ConstImageView& texture, const StereoParams& params,
+                  const BelowRangeGuard& guard, const ImageView& disparity,
+                  const ImageView& winnerRight, RowRange rows, const ColumnWindow& window) {
   const int width = left.width;
   const int height = left.height;
   const int r = params.blockSize / 2;
   const int count = params.numDisparities;
   const int minD = params.minDisparity;
-  const std::int16_t invalid = invalidDisparity(params);
   const auto noWinner = static_cast<std::int16_t>(minD - 1);
 
-  for (int y = rows.begin; y < rows.end; ++y) {
-    std::fill_n(disparity.row<std::int16_t>(y), width, invalid);
-    std::fill_n(winnerRight.row<std::int16_t>(y), width, noWinner);
-  }
   MatchRegion region = matchRegion(width, height, params);
   region.y0 = std::max(region.y0, rows.begin);
   region.y1 = std::min(region.y1, rows.end);
   if (region.empty()) return;
+  // The left pixels costed: [cx0, cx1), band and region.
+  const int cx0 = region.bandX0;
+  const int cx1 = std::min(region.x1, window.costedEnd);
+  const int leftEnd = std::min(cx1, window.leftEnd);
+  const int rightEnd = std::clamp(window.rightEnd, 0, width);
+  // How many disparities pixel x searches (its top is x - r in the band).
+  const auto countAt = [&](int x) { return std::min(count, x - r - minD + 1); };
 
   // Column sums over the window's height, for the columns the windows of the
-  // region touch: columnCost[k * width + x] = sum over |j| <= r of
-  // |L(x, y+j) - R(x - d, y+j)|, and columnTexture[x] = sum of T(x, y+j).
-  // They slide down one row at a time: add the row entering the window,
-  // subtract the row leaving it.
-  const int xa = region.x0 - r;
-  const int xb = region.x1 + r;  // columns [xa, xb)
+  // costed pixels touch: columnCost[k * width + x] = sum over |j| <= r of
+  // |L(x, y+j) - R(x - d, y+j)| where x - d >= 0, and columnTexture[x] =
+  // sum of T(x, y+j). They slide down one row at a time: add the row
+  // entering the window, subtract the row leaving it.
+  const int xa = cx0 - r;
+  const int xb = cx1 + r;  // columns [xa, xb)
   std::vector<std::int32_t> columnCost(static_cast<std::size_t>(count) * width, 0);
   std::vector<std::int32_t> columnTexture(width, 0);
   const bool useTexture = params.textureThreshold > 0;
@@ -172,9 +190,7 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
   std::vector<std::int32_t> guardColumn(static_cast<std::size_t>(guards) * width, 0);
   const auto guardDisparity = [&](int n) { return minD - (n + 1) * guard.step; };
   const auto guardColumnEnd = [&](int n) { return std::min(xb, width + guardDisparity(n)); };
-  const auto guardPixelEnd = [&](int n) {
-    return std::min(region.x1, width - r + guardDisparity(n));
-  };
+  const auto guardPixelEnd = [&](int n) { return std::min(cx1, width - r + guardDisparity(n)); };
 
   auto addRow = [&](int row, int sign) {
     const auto* l = left.row<std::uint8_t>(row);
@@ -182,13 +198,13 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     for (int k = 0; k < count; ++k) {
       const int d = minD + k;
       std::int32_t* col = &columnCost[static_cast<std::size_t>(k) * width];
-      for (int x = xa; x < xb; ++x)
+      for (int x = std::max(xa, d); x < xb; ++x)
         col[x] += sign * std::abs(l[x] - rr[x - d]);
     }
     for (int n = 0; n < guards; ++n) {
       const int g = guardDisparity(n);
       std::int32_t* col = &guardColumn[static_cast<std::size_t>(n) * width];
-      for (int x = xa; x < guardColumnEnd(n); ++x)
+      for (int x = std::max(xa, g); x < guardColumnEnd(n); ++x)
         col[x] += sign * std::abs(l[x] - rr[x - g]);
     }
     if (useTexture) {
@@ -202,6 +218,7 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
 
   std::vector<std::int32_t> costs(static_cast<std::size_t>(count) * width);  // [x][k]
   std::vector<std::int32_t> rightBestCost(width);
+  std::vector<std::int16_t> rightWinner(width);
   std::vector<std::int32_t> guardLeast(width);
   std::vector<std::int32_t> guardCost(static_cast<std::size_t>(guards) * width);  // [n][x]
   for (int y = region.y0; y < region.y1; ++y) {
@@ -210,15 +227,18 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
       addRow(y - r - 1, -1);
     }
 
-    // Window sums along the row, for every region column: a running sum that
-    // takes in the column entering the window and drops the one leaving it.
+    // Window sums along the row, for every costed column whose window fits
+    // the right image at d: a running sum that takes in the column entering
+    // the window and drops the one leaving it.
     for (int k = 0; k < count; ++k) {
       const std::int32_t* col = &columnCost[static_cast<std::size_t>(k) * width];
+      const int xs = std::max(cx0, r + minD + k);
+      if (xs >= cx1) continue;
       std::int32_t sum = 0;
       for (int i = -r; i <= r; ++i)
-        sum += col[region.x0 + i];
-      for (int x = region.x0; x < region.x1; ++x) {
-        if (x > region.x0) sum += col[x + r] - col[x - r - 1];
+        sum += col[xs + i];
+      for (int x = xs; x < cx1; ++x) {
+        if (x > xs) sum += col[x + r] - col[x - r - 1];
         costs[static_cast<std::size_t>(x) * count + k] = sum;
       }
     }
@@ -228,8 +248,8 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     for (int n = 0; n < guards; ++n) {
       const std::int32_t* col = &guardColumn[static_cast<std::size_t>(n) * width];
       std::int32_t sum = 0;
-      for (int x = region.x0; x < guardPixelEnd(n); ++x) {
-        if (x == region.x0) {
+      for (int x = cx0; x < guardPixelEnd(n); ++x) {
+        if (x == cx0) {
           for (int i = -r; i <= r; ++i)
             sum += col[x + i];
         } else {
@@ -241,27 +261,27 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     }
 
     auto* outDisparity = disparity.row<std::int16_t>(y);
-    for (int x = region.x0; x < region.x1; ++x) {
+    for (int x = cx0; x < leftEnd; ++x) {
       int textureSum = 0;
       if (useTexture) {
         for (int i = -r; i <= r; ++i)
           textureSum += columnTexture[x + i];
       }
-      outDisparity[x] = decidePixel(&costs[static_cast<std::size_t>(x) * count], textureSum,
-                                    guardLeast[x], params);
+      outDisparity[x] = decidePixel(&costs[static_cast<std::size_t>(x) * count], countAt(x),
+                                    textureSum, guardLeast[x], params);
     }
 
     // The right view's winner: left pixels in increasing x reach each right
     // pixel in increasing d, so a strict < keeps the smallest d on ties.
-    auto* outWinner = winnerRight.row<std::int16_t>(y);
     std::fill(rightBestCost.begin(), rightBestCost.end(), std::numeric_limits<std::int32_t>::max());
-    for (int x = region.x0; x < region.x1; ++x) {
-      for (int k = 0; k < count; ++k) {
+    std::fill(rightWinner.begin(), rightWinner.end(), noWinner);
+    for (int x = cx0; x < cx1; ++x) {
+      for (int k = 0; k < countAt(x); ++k) {
         const int xr = x - (minD + k);
         const std::int32_t c = costs[static_cast<std::size_t>(x) * count + k];
         if (c < rightBestCost[xr]) {
           rightBestCost[xr] = c;
-          outWinner[xr] = static_cast<std::int16_t>(minD + k);
+          rightWinner[xr] = static_cast<std::int16_t>(minD + k);
         }
       }
     }
@@ -269,13 +289,13 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
     // The guard's candidates for the right pixels that have a winner: the
     // checked disparities in increasing g (n decreasing), a strict < keeping
     // the smallest g, then <= against the range's least (g is smaller).
-    const int maxD = minD + count - 1;
-    for (int xr = region.x0 - maxD; xr < region.x1 - minD && guards > 0; ++xr) {
+    for (int xr = 0; xr < width && guards > 0; ++xr) {
+      if (rightBestCost[xr] == std::numeric_limits<std::int32_t>::max()) continue;
       std::int32_t least = std::numeric_limits<std::int32_t>::max();
       int leastD = 0;
       for (int n = guards - 1; n >= 0; --n) {
         const int x = xr + guardDisparity(n);
-        if (x < region.x0 || x >= guardPixelEnd(n)) continue;
+        if (x < cx0 || x >= guardPixelEnd(n)) continue;
         const std::int32_t c = guardCost[static_cast<std::size_t>(n) * width + x];
         if (c < least) {
           least = c;
@@ -283,9 +303,38 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
         }
       }
       if (least <= rightBestCost[xr])
-        outWinner[xr] = static_cast<std::int16_t>(std::min(leastD, minD - 2));
+        rightWinner[xr] = static_cast<std::int16_t>(std::min(leastD, minD - 2));
     }
+    std::copy_n(rightWinner.begin(), rightEnd, winnerRight.row<std::int16_t>(y));
   }
+}
+
+void matchBlocks(const ConstImageView& left, const ConstImageView& right,
+                 const ConstImageView& texture, const StereoParams& params,
+                 const BelowRangeGuard& guard, const ImageView& disparity,
+                 const ImageView& winnerRight, RowRange rows) {
+  const std::int16_t invalid = invalidDisparity(params);
+  const auto noWinner = static_cast<std::int16_t>(params.minDisparity - 1);
+  for (int y = rows.begin; y < rows.end; ++y) {
+    std::fill_n(disparity.row<std::int16_t>(y), left.width, invalid);
+    std::fill_n(winnerRight.row<std::int16_t>(y), left.width, noWinner);
+  }
+  matchColumns(left, right, texture, params, guard, disparity, winnerRight, rows, ColumnWindow{});
+}
+
+void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
+                   const ConstImageView& texture, const StereoParams& params,
+                   const BelowRangeGuard& guard, const ImageView& disparity,
+                   const ImageView& winnerRight, RowRange rows) {
+  const MatchRegion region = matchRegion(left.width, left.height, params);
+  if (region.empty() || region.bandX0 == region.x0) return;
+  // Right pixels left of x0 - minDisparity have all their candidates left of
+  // x0 + numDisparities - 1; the band's left pixels end at x0.
+  ColumnWindow window;
+  window.costedEnd = region.x0 + params.numDisparities - 1;
+  window.leftEnd = region.x0;
+  window.rightEnd = region.x0 - params.minDisparity;
+  matchColumns(left, right, texture, params, guard, disparity, winnerRight, rows, window);
 }
 
 }  // namespace scalar

@@ -50,9 +50,9 @@ TEST(OptionTable, EveryStereoOptionHasADefaultInRangeAndAnUniqueNameAndFlag) {
     EXPECT_EQ(std::string(o.flag).rfind("--", 0), 0u) << o.flag;
     EXPECT_GT(std::string(o.help).size(), 5u) << o.name;
   }
-  // Every int member of StereoParams is in the table (10 of them, the
-  // eleventh member being the pre-filter's type).
-  EXPECT_EQ(stereoOptions().size(), 10u);
+  // Every int member of StereoParams is in the table (11 of them, the
+  // twelfth member being the pre-filter's type).
+  EXPECT_EQ(stereoOptions().size(), 11u);
   EXPECT_NO_THROW(validate(defaults));
 }
 

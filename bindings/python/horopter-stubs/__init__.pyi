@@ -289,6 +289,12 @@ class StereoMatcher:
     def setSpeckleRange(self, speckleRange: Any) -> None:
         """Sets speckleRange (largest step between neighbours of one blob, 0..32752 1/16 px) for the next compute; a bad value raises horopter.Error naming it and keeps the old settings"""
         ...
+    def getLeftBand(self) -> int:
+        """leftBand: match the left columns the whole range misses over the disparities that fit there, where at least this many do; 0: off (0..1024 px)"""
+        ...
+    def setLeftBand(self, leftBand: Any) -> None:
+        """Sets leftBand (match the left columns the whole range misses over the disparities that fit there, where at least this many do; 0: off, 0..1024 px) for the next compute; a bad value raises horopter.Error naming it and keeps the old settings"""
+        ...
 
 class StereoMatcherParams:
     """A StereoMatcher's own parameters (matcher.params), read and written through: assigning a field takes effect on the next compute, validated (horopter.Error naming the parameter keeps the old settings). copy() gives a detached StereoParams."""
@@ -369,6 +375,12 @@ class StereoMatcherParams:
         ...
     @speckleRange.setter
     def speckleRange(self, value: int) -> None: ...
+    @property
+    def leftBand(self) -> int:
+        """match the left columns the whole range misses over the disparities that fit there, where at least this many do; 0: off (0..1024 px); assigning it sets the matcher"""
+        ...
+    @leftBand.setter
+    def leftBand(self, value: int) -> None: ...
 
 class StereoParams:
     """cv::StereoBM's parameters, with its names; disparities are int16 in 1/16 px, invalid = (minDisparity - 1) * 16"""
@@ -447,6 +459,12 @@ class StereoParams:
         ...
     @speckleRange.setter
     def speckleRange(self, value: int) -> None: ...
+    @property
+    def leftBand(self) -> int:
+        """match the left columns the whole range misses over the disparities that fit there, where at least this many do; 0: off (0..1024 px)"""
+        ...
+    @leftBand.setter
+    def leftBand(self, value: int) -> None: ...
 
 class StereoRectifier:
     """Undistort-rectify maps computed once; rectify() remaps a captured pair"""

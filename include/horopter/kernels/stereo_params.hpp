@@ -57,6 +57,13 @@ struct HOROPTER_API StereoParams {
   // Largest step between 4-neighbours of one blob, in the map's 1/16-pixel
   // units (as cv::StereoBM, which does not scale it; StereoSGBM does).
   int speckleRange = 32;
+  // The left band: the left view's first numDisparities + blockSize / 2
+  // columns, which no disparity of the whole range can match (the window
+  // would leave the right image), are matched over the part of the range
+  // that fits, where that is at least this many disparities. 0 = off (as
+  // cv::StereoBM, which leaves them invalid). Horopter's own; see
+  // kernels/sad/sad_scalar.cpp.
+  int leftBand = 0;
 };
 
 // The invalid marker: (minDisparity - 1) * 16.
