@@ -49,9 +49,9 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ImageView& winnerRight, RowRange rows);
 
 // The left band alone, after a backend's region-only pass over the same rows:
-// writes the band's left pixels and every right winner left of x0 -
-// minDisparity (whose candidates include band pixels), from costs over the
-// columns [bandX0, x0 + numDisparities - 1); nothing without a band. A
+// writes the band's left pixels and every right winner left of x0 - the
+// lowest disparity checked (whose candidates include band pixels), from
+// costs over the columns left of that end + maxD; nothing without a band. A
 // region-only pass followed by this equals matchBlocks.
 void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
                    const ConstImageView& texture, const StereoParams& params,

@@ -328,12 +328,14 @@ void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
                    const ImageView& winnerRight, RowRange rows) {
   const MatchRegion region = matchRegion(left.width, left.height, params);
   if (region.empty() || region.bandX0 == region.x0) return;
-  // Right pixels left of x0 - minDisparity have all their candidates left of
-  // x0 + numDisparities - 1; the band's left pixels end at x0.
+  // A band pixel x < x0 is a candidate of the right pixels x - d, d down to
+  // the lowest disparity checked (minDisparity, or the guard's lowest g);
+  // their other candidates lie left of that right end + maxD.
+  const int lowest = params.minDisparity - guardCount(params, guard) * guard.step;
   ColumnWindow window;
-  window.costedEnd = region.x0 + params.numDisparities - 1;
+  window.rightEnd = region.x0 - lowest;
+  window.costedEnd = window.rightEnd + params.minDisparity + params.numDisparities - 1;
   window.leftEnd = region.x0;
-  window.rightEnd = region.x0 - params.minDisparity;
   matchColumns(left, right, texture, params, guard, disparity, winnerRight, rows, window);
 }
 

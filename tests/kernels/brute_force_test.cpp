@@ -24,7 +24,7 @@ std::string describe(const StereoParams& p) {
          ", textureThreshold " + std::to_string(p.textureThreshold) + ", uniquenessRatio " +
          std::to_string(p.uniquenessRatio) + ", disp12MaxDiff " + std::to_string(p.disp12MaxDiff) +
          ", speckleWindowSize " + std::to_string(p.speckleWindowSize) + ", speckleRange " +
-         std::to_string(p.speckleRange);
+         std::to_string(p.speckleRange) + ", leftBand " + std::to_string(p.leftBand);
 }
 
 // ---------------------------------------------------------------------------
@@ -254,6 +254,57 @@ INSTANTIATE_TEST_SUITE_P(Params, BruteForceMatch,
                                             ::testing::Values(16, 32)),
                          matchParamName);
 
+// The left band (StereoParams::leftBand): the columns left of the region,
+// each matched over the disparities that fit there, against the naive
+// loop's own reading of "fit"; band widths from one disparity to the whole
+// range, the smallest widths the region allows and wider ones.
+TEST(BruteForceMatch, LeftBandEqualsNaiveQuadrupleLoop) {
+  long bandPixels = 0, bandValid = 0, casesRun = 0;
+  for (int blockSize : {3, 9}) {
+    for (int minD : {0, -8, 4}) {
+      for (int numD : {16, 32}) {
+        for (int band : {1, 2, 3, 16, numD}) {
+          const int needed = blockSize + std::max(minD + numD - 1, 0) - std::min(minD, 0);
+          for (int w : {needed, needed + 1, needed + 23}) {
+            for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+              StereoParams p;
+              p.blockSize = blockSize;
+              p.minDisparity = minD;
+              p.numDisparities = numD;
+              p.leftBand = band;
+              p.textureThreshold = seed == 1 ? 0 : blockSize * blockSize;
+              p.uniquenessRatio = seed == 1 ? 15 : 0;
+              const int h = blockSize + 3;
+              const int kind = static_cast<int>(seed + w) % 4;
+              const MatchCase c = makeMatchCase(w, h, p, seed * 977 + w + band, kind);
+              SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + ", " + c.what + ", " +
+                           describe(p));
+              const naive::MatchResult want =
+                  naive::matchBlocks(c.left.view(), c.right.view(), c.texture.view(), p);
+              TestImage disparity(w, h, PixelType::S16C1), winner(w, h, PixelType::S16C1);
+              disparity.fillBytes(0x5A);
+              winner.fillBytes(0x5A);
+              matchBlocks(c.left.view(), c.right.view(), c.texture.view(), p, disparity.view(),
+                          winner.view());
+              ASSERT_TRUE(sameImage(want.disparity.view(), disparity.view())) << "disparity";
+              ASSERT_TRUE(sameImage(want.winnerRight.view(), winner.view())) << "winnerRight";
+              ++casesRun;
+              const MatchRegion region = matchRegion(w, h, p);
+              bandPixels += static_cast<long>(region.x0 - region.bandX0) * (region.y1 - region.y0);
+              for (int y = region.y0; y < region.y1; ++y)
+                for (int x = region.bandX0; x < region.x0; ++x)
+                  bandValid += disparity.at<std::int16_t>(x, y) != invalidDisparity(p);
+            }
+          }
+        }
+      }
+    }
+  }
+  ASSERT_GT(casesRun, 0);
+  EXPECT_GT(bandPixels, 0);
+  EXPECT_GT(bandValid, 0) << "no band pixel was ever valid: the band went untested";
+}
+
 // Random configurations over the whole parameter space (kept small enough
 // for brute force: at most about 4 million pixel differences each).
 TEST(BruteForceMatch, RandomConfigurations) {
@@ -269,6 +320,7 @@ TEST(BruteForceMatch, RandomConfigurations) {
     p.textureThreshold =
         rng.chance(40) ? 0 : rng.uniform(1, p.blockSize * p.blockSize * textureMax);
     p.uniquenessRatio = rng.chance(30) ? 0 : rng.uniform(1, 1000);
+    p.leftBand = rng.chance(50) ? 0 : rng.uniform(1, p.numDisparities);
     const int needed = p.blockSize + std::max(p.minDisparity + p.numDisparities - 1, 0) -
                        std::min(p.minDisparity, 0);
     const int w = needed + rng.uniform(0, 30);

@@ -59,6 +59,33 @@ bool inMatchRegion(int x, int y, int width, int height, const StereoParams& para
   return true;
 }
 
+// The largest disparity pixel (x, y) is matched at: maxD in the region; in
+// the left band (params.leftBand = m > 0), a pixel left of the region whose
+// window fits the left image and the right image's right edge at every d,
+// the largest d whose window fits the right image's left edge, where at
+// least m disparities do; minDisparity - 1: not matched.
+static int matchedTop(int x, int y, int width, int height, const StereoParams& params) {
+  const int r = params.blockSize / 2;
+  const int minD = params.minDisparity;
+  const int maxD = minD + params.numDisparities - 1;
+  if (inMatchRegion(x, y, width, height, params)) return maxD;
+  if (params.leftBand == 0 || y - r < 0 || y + r >= height || x - r < 0 || x + r >= width)
+    return minD - 1;
+  int fitting = 0, top = minD - 1;
+  for (int d = minD; d <= maxD; ++d) {
+    if (x + r - d >= width) return minD - 1;  // right of the region, not the band
+    if (x - r - d >= 0) {
+      ++fitting;
+      top = d;
+    }
+  }
+  // Left of a region that exists: a band pixel needs one to its right.
+  bool regionRight = false;
+  for (int xi = x + 1; xi < width && !regionRight; ++xi)
+    regionRight = inMatchRegion(xi, y, width, height, params);
+  return fitting >= params.leftBand && regionRight ? top : minD - 1;
+}
+
 std::int32_t sadCost(const ConstImageView& left, const ConstImageView& right, int x, int y, int d,
                      int radius) {
   std::int32_t sum = 0;
@@ -92,28 +119,29 @@ MatchResult matchBlocks(const ConstImageView& left, const ConstImageView& right,
   }
 
   std::vector<std::int32_t> rowCosts(static_cast<std::size_t>(w) * count);
-  std::vector<bool> inRegion(static_cast<std::size_t>(w));
+  std::vector<int> topOf(static_cast<std::size_t>(w));  // minD - 1: not matched
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      inRegion[x] = inMatchRegion(x, y, w, h, params);
-      if (!inRegion[x]) continue;
+      topOf[x] = matchedTop(x, y, w, h, params);
+      if (topOf[x] < minD) continue;
+      const int top = topOf[x];  // this pixel's own range: the region's, or shorter in the band
       ++out.stats.regionPixels;
       std::int32_t* c = &rowCosts[static_cast<std::size_t>(x) * count];
-      for (int d = minD; d <= maxD; ++d)
+      for (int d = minD; d <= top; ++d)
         c[d - minD] = sadCost(left, right, x, y, d, r);
 
       // Winner: least cost, first (smallest d) among equals.
       int best = minD;
-      for (int d = minD; d <= maxD; ++d) {
+      for (int d = minD; d <= top; ++d) {
         if (c[d - minD] < c[best - minD]) best = d;
       }
-      for (int d = minD; d <= maxD; ++d) {
+      for (int d = minD; d <= top; ++d) {
         if (d != best && c[d - minD] == c[best - minD]) {
           ++out.stats.tiedWinner;
           break;
         }
       }
-      if (best == minD || best == maxD) ++out.stats.rangeEndWinner;
+      if (best == minD || best == top) ++out.stats.rangeEndWinner;
 
       if (params.textureThreshold > 0) {
         long sum = 0;
@@ -129,7 +157,7 @@ MatchResult matchBlocks(const ConstImageView& left, const ConstImageView& right,
         const std::int64_t c0 = c[best - minD];
         const std::int64_t t = c0 + c0 * params.uniquenessRatio / 100;
         bool unique = true;
-        for (int d = minD; d <= maxD; ++d) {
+        for (int d = minD; d <= top; ++d) {
           if (std::abs(d - best) > 1 && c[d - minD] <= t) unique = false;
         }
         if (!unique) {
@@ -139,10 +167,12 @@ MatchResult matchBlocks(const ConstImageView& left, const ConstImageView& right,
       }
       const std::int64_t c0 = c[best - minD];
       std::int64_t cm = 0, cp = 0;
-      if (best == minD) {
+      if (best == minD && best == top) {
+        cm = cp = c0;  // a range of one: no neighbour, offset 0
+      } else if (best == minD) {
         cp = c[best + 1 - minD];
         cm = cp;
-      } else if (best == maxD) {
+      } else if (best == top) {
         cm = c[best - 1 - minD];
         cp = cm;
       } else {
@@ -165,7 +195,7 @@ MatchResult matchBlocks(const ConstImageView& left, const ConstImageView& right,
       int bestD = 0;
       for (int d = minD; d <= maxD; ++d) {
         const int x = xr + d;
-        if (x < 0 || x >= w || !inRegion[x]) continue;
+        if (x < 0 || x >= w || d > topOf[x]) continue;
         const std::int32_t cost = rowCosts[static_cast<std::size_t>(x) * count + (d - minD)];
         if (!found || cost < bestCost) {
           found = true;

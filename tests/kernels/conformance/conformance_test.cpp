@@ -17,6 +17,7 @@
 // middle of a larger buffer (non-zero ROI origin). Every byte around the view
 // holds a canary that must survive, and inputs must come back unchanged.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -245,7 +246,7 @@ std::string describe(const StereoParams& p) {
     << ", uniquenessRatio " << p.uniquenessRatio << ", disp12MaxDiff " << p.disp12MaxDiff
     << ", speckleWindowSize " << p.speckleWindowSize << ", speckleRange " << p.speckleRange
     << ", preFilter " << toString(p.preFilterType) << ", size " << p.preFilterSize << ", cap "
-    << p.preFilterCap;
+    << p.preFilterCap << ", leftBand " << p.leftBand;
   return o.str();
 }
 
@@ -673,6 +674,133 @@ void conformMatchBlocksGuarded(const Backend& backend) {
   EXPECT_GT(rightChanged, 0) << "the guard changed no right winner: the sweep tests nothing";
 }
 
+// Matching with the left band (StereoParams::leftBand): band widths from
+// one disparity to the whole range, image widths at and just above the
+// smallest the region allows and the front end's (640 at 64 disparities,
+// 1280 at 128 and block 15), ranges below, across and above zero, the
+// guard below the range with the band, a block past the AVX2 16-bit bound
+// (its scalar fallback), uniqueness and texture on and off, raw and
+// prefiltered inputs, and stripes of rows. The band must have made some
+// pixels valid and changed some right winners, or the sweep tests nothing.
+void conformMatchBlocksLeftBand(const Backend& backend) {
+  struct BandCase {
+    int w, h;
+    StereoParams p;
+    BelowRangeGuard guard;
+    Pattern pattern;
+    int shift;
+    bool prefiltered;
+  };
+  std::vector<BandCase> cases;
+  int k = 0;
+  const auto add = [&](int w, int h, StereoParams p, BelowRangeGuard guard, int shift) {
+    p.uniquenessRatio = std::array{15, 0, 100}[k % 3];
+    p.textureThreshold = (k % 4 == 3) ? 0 : 10;
+    cases.push_back({w, h, p, guard, kPatterns[k % 5], shift, k % 2 == 0});
+    ++k;
+  };
+  for (int band : {1, 2, 16, 63, 64}) {
+    StereoParams p;
+    p.numDisparities = 64;
+    p.blockSize = 9;
+    p.leftBand = band;
+    const int needed = p.blockSize + p.numDisparities - 1;
+    for (int w : {needed, needed + 1, needed + 17, 640})
+      add(w, 13 + k % 3, p, {}, 3 + k % 9);
+  }
+  for (int minD : {-10, 7}) {
+    for (int band : {1, 5, 32}) {
+      StereoParams p;
+      p.minDisparity = minD;
+      p.numDisparities = 32;
+      p.blockSize = (band % 2 == 0) ? 7 : 5;
+      p.leftBand = band;
+      add(97 + k, 17, p, {}, minD + 2 + k % 5);
+    }
+  }
+  {
+    StereoParams p;  // the HD target
+    p.numDisparities = 128;
+    p.blockSize = 15;
+    p.leftBand = 16;
+    add(1280, 18, p, {}, 9);
+    add(1287, 17, p, {}, 30);
+  }
+  for (int step : {1, 3}) {  // the guard below the range, with the band
+    StereoParams p;
+    p.minDisparity = 16;
+    p.numDisparities = 48;
+    p.blockSize = 7;
+    p.leftBand = 8;
+    add(150, 19, p, {step, step == 1 ? 0 : 5}, 9);
+    add(150, 19, p, {step, 0}, 24);
+  }
+  {
+    StereoParams p;  // past the AVX2 16-bit cost bound: its scalar fallback
+    p.numDisparities = 16;
+    p.blockSize = 17;
+    p.leftBand = 4;
+    add(80, 22, p, {}, 5);
+  }
+  long long bandValid = 0, rightChanged = 0;
+  for (const BandCase& c : cases) {
+    const int w = c.w, h = c.h;
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + patternName(c.pattern) +
+                 ", shift " + std::to_string(c.shift) + ", guard step " +
+                 std::to_string(c.guard.step) + " down to " + std::to_string(c.guard.lowest) +
+                 (c.prefiltered ? ", prefiltered" : ", raw") + ", " + describe(c.p));
+    ASSERT_FALSE(matchRegion(w, h, c.p).empty());
+    StereoPair pair = patternPair(w, h, c.pattern, c.shift,
+                                  static_cast<std::uint64_t>(w * 37 + h + c.shift + c.p.leftBand));
+    TestImage texture(w, h, PixelType::U8C1);
+    if (c.prefiltered) {
+      TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
+      prefilterXSobel(pair.left.view(), c.p.preFilterCap, lf.view(), texture.view(),
+                      scalarBackend());
+      prefilterXSobel(pair.right.view(), c.p.preFilterCap, rf.view(), {}, scalarBackend());
+      pair = {std::move(lf), std::move(rf)};
+    } else {
+      prefilterXSobel(pair.left.view(), c.p.preFilterCap, {}, texture.view(), scalarBackend());
+    }
+    TestImage refDisparity(w, h, PixelType::S16C1), refWinner(w, h, PixelType::S16C1);
+    matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, c.guard,
+                refDisparity.view(), refWinner.view(), scalarBackend());
+    StereoParams noBand = c.p;
+    noBand.leftBand = 0;
+    TestImage plain(w, h, PixelType::S16C1), plainWinner(w, h, PixelType::S16C1);
+    matchBlocks(pair.left.view(), pair.right.view(), texture.view(), noBand, c.guard, plain.view(),
+                plainWinner.view(), scalarBackend());
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        bandValid +=
+            plain.view().row<std::int16_t>(y)[x] != refDisparity.view().row<std::int16_t>(y)[x];
+        rightChanged +=
+            plainWinner.view().row<std::int16_t>(y)[x] != refWinner.view().row<std::int16_t>(y)[x];
+      }
+    }
+    for (const Layout& layout : kLayouts) {
+      SCOPED_TRACE(std::string("layout ") + layout.name);
+      const TestImage left = pair.left.clone(layout), right = pair.right.clone(layout);
+      const TestImage tex = texture.clone(layout);
+      TestImage disparity(w, h, PixelType::S16C1, layout), winner(w, h, PixelType::S16C1, layout);
+      disparity.fillBytes(0x77);
+      winner.fillBytes(0x77);
+      // Two stripes of rows, as the front end's threads call it.
+      for (const RowRange rows : {RowRange{0, h / 3}, RowRange{h / 3, h}})
+        matchBlocks(left.view(), right.view(), tex.view(), c.p, c.guard, disparity.view(),
+                    winner.view(), backend, rows);
+      CONFORM(sameImage(refDisparity.view(), disparity.view()), "disparity");
+      CONFORM(sameImage(refWinner.view(), winner.view()), "winnerRight");
+      CONFORM(disparity.canariesIntact(), "disparity");
+      CONFORM(winner.canariesIntact(), "winnerRight");
+      CONFORM(untouched(pair.left, left, "left"), "left");
+      CONFORM(untouched(pair.right, right, "right"), "right");
+    }
+  }
+  EXPECT_GT(bandValid, 0) << "the band changed no pixel in any case: the sweep tests nothing";
+  EXPECT_GT(rightChanged, 0) << "the band changed no right winner: the sweep tests nothing";
+}
+
 // ---------------------------------------------------------------------------
 // Left-right check
 
@@ -885,6 +1013,9 @@ TEST_P(Conformance, MatchBlocks) {
 }
 TEST_P(Conformance, MatchBlocksGuardBelowRange) {
   conformMatchBlocksGuarded(backend());
+}
+TEST_P(Conformance, MatchBlocksLeftBand) {
+  conformMatchBlocksLeftBand(backend());
 }
 TEST_P(Conformance, LeftRightCheck) {
   conformLeftRightCheck(backend());
