@@ -44,15 +44,17 @@ std::vector<BandCase> cases() {
         StereoParams p;
         p.minDisparity = minD;
         p.numDisparities = numD;
+        // The settings cycle with different periods, so that they combine.
         p.blockSize = k % 3 == 0 ? 5 : (k % 3 == 1 ? 9 : 3);
         p.leftBand = band;
+        // Texture values 0..4 (below): about half the pixels fail.
         p.textureThreshold = k % 2 == 0 ? 0 : p.blockSize * p.blockSize * 2;
-        p.uniquenessRatio = k % 4 < 2 ? 15 : 0;
+        p.uniquenessRatio = (k / 2) % 2 == 0 ? 15 : 0;
         BelowRangeGuard guard;
-        if (k % 3 == 1) guard = {1 + k % 4, minD - 9 - k % 5};
+        if (k % 7 < 3) guard = {1 + k % 4, minD - 9 - k % 5};
         const int w0 = smallestWidth(p);
-        const int width = std::max(1, std::vector<int>{w0, w0 + 1, w0 + 2, w0 + 5, w0 + 40}[k % 5]);
-        out.push_back({width, 13 + k % 7, p, guard, k % 3 == 2, minD + 3 + k % 11});
+        const int widths[] = {w0, w0 + 1, w0 + 2, w0 + 5, w0 + 40};
+        out.push_back({widths[k % 5], 13 + k % 7, p, guard, (k / 3) % 3 == 2, minD + 3 + k % 11});
         ++k;
       }
     }
