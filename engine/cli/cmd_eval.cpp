@@ -20,9 +20,17 @@ namespace {
 
 detail::Json json(const StereoScores& s) {
   using detail::jsonNumber;
-  return detail::Json{{"bad1", jsonNumber(s.bad1, 4)},     {"bad2", jsonNumber(s.bad2, 4)},
-                      {"avgerr", jsonNumber(s.avgerr, 4)}, {"density", jsonNumber(s.density, 4)},
-                      {"ms", jsonNumber(s.ms, 3)},         {"backend", s.backend}};
+  detail::Json out{{"bad1", jsonNumber(s.bad1, 4)},     {"bad2", jsonNumber(s.bad2, 4)},
+                   {"avgerr", jsonNumber(s.avgerr, 4)}, {"density", jsonNumber(s.density, 4)},
+                   {"ms", jsonNumber(s.ms, 3)},         {"backend", s.backend}};
+  if (s.leftBand)
+    out["left_band"] =
+        detail::Json{{"reachable", s.leftBand->reachable},
+                     {"unreachable", s.leftBand->unreachable},
+                     {"reachable_bad2", jsonNumber(s.leftBand->reachableBad2, 4)},
+                     {"reachable_density", jsonNumber(s.leftBand->reachableDensity, 4)},
+                     {"false_matches", jsonNumber(s.leftBand->falseMatches, 4)}};
+  return out;
 }
 
 void printRow(const char* who, const StereoScores& s) {
@@ -78,7 +86,9 @@ int runEvalStereo(Args& args) {
            "density (% of pixels with ground truth that have a valid output) and ms per frame.\n"
            "Ground truth: 8- or 16-bit image, disparity = value / S, 0 = unknown; or\n"
            "Middlebury's PFM (float px, inf = unknown; --gt-scale defaults to 1), such as\n"
-           "the disparity.pfm that horopter disparity writes.\n\n"
+           "the disparity.pfm that horopter disparity writes. With --left-band N, the band's\n"
+           "pixels are scored apart too: those whose true match the band's search reaches,\n"
+           "and the share of those it cannot reach that were given a (false) match.\n\n"
         << stereoFlagsHelp(StereoParams{}, MedianParams{}) << commandOptionsHelp(kOptions);
     return 0;
   }
@@ -130,6 +140,11 @@ int runEvalStereo(Args& args) {
                 "density%", "ms/frame");
     printRow("horopter", ours);
     if (theirs) printRow("opencv", *theirs);
+    if (const auto& b = ours.leftBand)
+      std::printf(
+          "left band: %ld pixels with ground truth its search reaches: bad2 %.2f%%, density "
+          "%.2f%%; %ld it cannot reach: %.2f%% given a (false) match\n",
+          b->reachable, b->reachableBad2, b->reachableDensity, b->unreachable, b->falseMatches);
   }
   if (requireParity && theirs && ours.bad2 > theirs->bad2) {
     std::fprintf(stderr, "horopter: bad-2.0 %.2f%% is worse than cv::StereoBM's %.2f%%\n",

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "horopter/core/error.hpp"
+#include "horopter/kernels/kernels.hpp"
 #include "horopter/vision/frontend.hpp"
 #include "horopter/vision/opencv.hpp"
 #include "io/disparity_images.hpp"
@@ -125,6 +126,38 @@ StereoScores scoreDisparity(const ConstImageView& disparity, std::int16_t invali
   return s;
 }
 
+std::optional<LeftBandScores> scoreLeftBand(const ConstImageView& disparity,
+                                            const StereoParams& params,
+                                            const cv::Mat& groundTruthPx) {
+  const MatchRegion region = matchRegion(disparity.width, disparity.height, params);
+  if (region.empty() || region.bandX0 >= region.x0) return std::nullopt;
+  const std::int16_t invalid = invalidDisparity(params);
+  const int r = params.blockSize / 2;
+  LeftBandScores s;
+  long reachableBad2 = 0, reachableValid = 0, falseMatches = 0;
+  for (int y = region.y0; y < region.y1; ++y) {
+    const auto* d = disparity.row<std::int16_t>(y);
+    const auto* gt = groundTruthPx.ptr<float>(y);
+    for (int x = region.bandX0; x < region.x0; ++x) {
+      if (!(gt[x] > 0)) continue;
+      const bool valid = d[x] != invalid;
+      if (gt[x] > x - r + 0.5) {
+        ++s.unreachable;
+        falseMatches += valid;
+        continue;
+      }
+      ++s.reachable;
+      reachableValid += valid;
+      reachableBad2 += !valid || std::abs(d[x] / double{kDisparityScale} - gt[x]) > 2.0;
+    }
+  }
+  const auto percent = [](long part, long whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
+  s.reachableBad2 = percent(reachableBad2, s.reachable);
+  s.reachableDensity = percent(reachableValid, s.reachable);
+  s.falseMatches = percent(falseMatches, s.unreachable);
+  return s;
+}
+
 StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const cv::Mat& gtPx,
                               const StereoParams& params, const MedianParams& median,
                               const Backend& backend, const EvalOptions& options) {
@@ -133,6 +166,7 @@ StereoScores evaluateHoropter(const cv::Mat& left, const cv::Mat& right, const c
   const double ms =
       timeRuns(options, [&] { frontend.computeDisparity(viewOf(left), viewOf(right)); });
   StereoScores s = scoreDisparity(frontend.disparity().view(), invalidDisparity(params), gtPx);
+  s.leftBand = scoreLeftBand(frontend.disparity().view(), params, gtPx);
   s.ms = ms;
   s.backend = backend.name;
   return s;

@@ -9,17 +9,7 @@
 
 namespace horopter {
 
-// The pixels where every disparity of the range can be evaluated with the
-// whole window inside both images: rows [y0, y1), columns [x0, x1). Empty
-// (x0 >= x1 or y0 >= y1) when the image is too small for the range. The left
-// band (params.leftBand, sad_scalar.cpp) is the columns [bandX0, x0), each
-// matched over the part of the range that fits; bandX0 = x0 without it.
-struct MatchRegion {
-  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
-  int bandX0 = 0;
-  bool empty() const { return x0 >= x1 || y0 >= y1; }
-};
-MatchRegion matchRegion(int width, int height, const StereoParams& params);
+// MatchRegion and matchRegion: horopter/kernels/kernels.hpp.
 
 // How many disparities the guard checks below params' range (0 when off):
 // minDisparity - k * step for k = 1 .. guardCount.

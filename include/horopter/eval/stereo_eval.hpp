@@ -2,6 +2,7 @@
 // cv::StereoBM (the peer) with the same parameters.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <opencv2/calib3d.hpp>
@@ -13,6 +14,17 @@
 
 namespace horopter {
 
+// The left band's pixels (StereoParams::leftBand) with known ground truth,
+// apart: `reachable` ones, whose true disparity lies within the band's search
+// at that column (at most x - r + 0.5 px), and `unreachable` ones, whose
+// match is out of the right view's window: any valid output there is wrong.
+struct LeftBandScores {
+  long reachable = 0, unreachable = 0;
+  double reachableBad2 = 0;     // % of reachable with error > 2 px or invalid
+  double reachableDensity = 0;  // % of reachable with a valid output
+  double falseMatches = 0;      // % of unreachable with a valid output
+};
+
 // Percentages are 0..100, over the pixels with known ground truth.
 struct StereoScores {
   double bad1 = 0;     // % whose error exceeds 1 px; invalid outputs count as bad
@@ -21,6 +33,7 @@ struct StereoScores {
   double density = 0;  // % with a valid output
   double ms = 0;       // wall time per frame (mean over the timed runs)
   std::string backend;
+  std::optional<LeftBandScores> leftBand;  // with a left band
 };
 
 // Reads an 8- or 16-bit single-channel ground-truth image (palette PNGs
@@ -43,6 +56,12 @@ cv::Mat loadGrey(const std::string& path, const char* what);
 // against ground truth in pixels (CV_32F, <= 0 = unknown).
 StereoScores scoreDisparity(const ConstImageView& disparity, std::int16_t invalid,
                             const cv::Mat& groundTruthPx);
+
+// The left band's scores of a disparity map matched with `params`; nullopt
+// without a band (params.leftBand 0 or no column left of the region).
+std::optional<LeftBandScores> scoreLeftBand(const ConstImageView& disparity,
+                                            const StereoParams& params,
+                                            const cv::Mat& groundTruthPx);
 
 struct EvalOptions {
   int warmupRuns = 1;

@@ -48,6 +48,19 @@ HOROPTER_API void prefilter(const ConstImageView& src, const StereoParams& param
                             const Backend& backend = scalarBackend(),
                             RowRange rows = RowRange::all());
 
+// The pixels where every disparity of the range can be evaluated with the
+// whole window inside both images: rows [y0, y1), columns [x0, x1). Empty
+// (x0 >= x1 or y0 >= y1) when the image is too small for the range. The left
+// band (params.leftBand) is the columns [bandX0, x0) of the same rows, each
+// matched over the part of the range that fits (kernels/sad/sad_scalar.cpp);
+// bandX0 = x0 without it. Every other pixel is invalid.
+struct HOROPTER_API MatchRegion {
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  int bandX0 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+};
+HOROPTER_API MatchRegion matchRegion(int width, int height, const StereoParams& params);
+
 // SAD block matching with winner-take-all, texture and uniqueness checks and
 // sub-pixel refinement. `left`/`right` are U8C1 (prefiltered or raw), `texture`
 // U8C1 (may be empty when params.textureThreshold == 0). Writes `disparity`
