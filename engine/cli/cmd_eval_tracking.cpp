@@ -93,16 +93,16 @@ constexpr CommandOption kOptions[] = {
      .value = "N",
      .min = 16,
      .max = 1024,
-     .fallback = "96",
-     .help = "the front end's search range, a multiple of 16 (96: down to 0.7 m; nearer hands "
+     .fallback = "128",
+     .help = "the front end's search range, a multiple of 16 (128: down to 0.52 m; nearer hands "
              "have no disparity, so no zone; a wider range also widens the band on the left "
-             "the right view cannot match)"},
+             "that no disparity of the whole range can match)"},
     {.kind = OptionKind::Integer,
      .flag = "--left-band",
      .value = "N",
      .min = 0,
      .max = 1024,
-     .fallback = "0",
+     .fallback = "16",
      .help = "match that band's columns over the disparities that fit there, where at least N "
              "do (0: off; the front end's --left-band)"},
     {.kind = OptionKind::Switch,

@@ -39,11 +39,16 @@ struct TrialOptions {
   std::string backend = "auto";  // the front end's backend
   int threads = 1;               // the disparity stage's threads
   int inFlight = 3;
-  // The front end: 96 disparities reach 0.7 m, where hands pushed forward
-  // from 1.0-1.7 m come (64 would stop at 1.04 m).
+  // The front end: 128 disparities reach 0.52 m, nearer than hands pushed
+  // forward from 1.0-1.7 m come (96 stopped at 0.7 m, 64 at 1.04 m); the
+  // left band matched where at least 16 disparities fit, so that the longer
+  // range does not widen the columns the matcher leaves blind (issue 20:
+  // tuning blocks 10596-10627 4.70 -> 3.38 % lost frames, 10660-10691 3.74
+  // -> 2.37 %; engine/interaction/README.md).
   StereoParams stereo = [] {
     StereoParams p;
-    p.numDisparities = 96;
+    p.numDisparities = 128;
+    p.leftBand = 16;
     return p;
   }();
   MedianParams median;
