@@ -2,6 +2,8 @@
 // and the geometry every backend shares.
 #pragma once
 
+#include <cstdint>
+
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/kernels.hpp"
@@ -56,6 +58,15 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const BelowRangeGuard& guard, const ImageView& disparity,
                  const ImageView& winnerRight, RowRange rows);
+
+// scalar::matchLeftBand, bit-exact (kernels/sad/sad_band_avx2.cpp).
+// costBound: a bound on every window cost (maxDiff * blockSize^2) where
+// the caller knows one, else -1 (derived here); 65535 or more runs the
+// scalar reference.
+void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
+                   const ConstImageView& texture, const StereoParams& params,
+                   const BelowRangeGuard& guard, const ImageView& disparity,
+                   const ImageView& winnerRight, RowRange rows, std::int64_t costBound = -1);
 }  // namespace avx2
 
 }  // namespace horopter

@@ -1547,9 +1547,10 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
   Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift,
                   maxDiff <= 127, smallProducts, static_cast<int>(maxDiff * side * side));
   matcher.run(region.y0, region.y1);
-  // The left band (params.leftBand) is a small triangle of the work, beside
-  // the region's sweep: the reference's own loops over its columns.
-  scalar::matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows);
+  // The left band (params.leftBand): its own sweep over the disparities that
+  // fit there (sad_band_avx2.cpp), under the same cost bound.
+  matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows,
+                maxDiff * side * side);
 }
 
 }  // namespace horopter::avx2
