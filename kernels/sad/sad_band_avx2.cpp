@@ -99,6 +99,18 @@ HOROPTER_AVX2_TARGET inline __m256i divideBy100(__m256i n) {
   return _mm256_set_m128i(hi, lo);
 }
 
+// Eight int32 lanes n / d truncated toward zero (|n| < 2^31, 0 < d < 2^31):
+// exact in double.
+HOROPTER_AVX2_TARGET inline __m256i divideTruncated(__m256i n, __m256i d) {
+  const __m128i lo =
+      _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(n)),
+                                        _mm256_cvtepi32_pd(_mm256_castsi256_si128(d))));
+  const __m128i hi =
+      _mm256_cvttpd_epi32(_mm256_div_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(n, 1)),
+                                        _mm256_cvtepi32_pd(_mm256_extracti128_si256(d, 1))));
+  return _mm256_set_m128i(hi, lo);
+}
+
 // The uniqueness limits c + c * ratio / 100 of 16 costs, clamped to 65534:
 // for a real cost (< 65535), C <= limit iff C <= the clamped limit, and
 // "no cost" is above it.
@@ -158,6 +170,27 @@ class BandMatcher {
       highest = std::max(highest, cEnd + dMax + 1);
     }
     columnsEnd_ = columnsEnd;
+    // "No cost" masks of the chunks that hold entries no pixel may weigh
+    // (see Strategy): [g][chunk][k][j], all ones where (d, xr) is invalid.
+    for (int g = 0; g < groups_; ++g) {
+      chunkBase_.push_back(static_cast<int>(maskIndex_.size()));
+      for (int chunk = 0; chunk < chunks_[g]; ++chunk) {
+        bool any = false;
+        for (int k = 0; k < kLanes; ++k) {
+          const int d = dLo_ + kLanes * g + k;
+          const int valid0 = std::max(r_, bandX0_ - d);
+          const int valid1 = std::min({rightEnd_, costedEnd_ - d, width_ - r_});
+          for (int j = 0; j < kLanes; ++j) {
+            const int xr = xrStart_[g] + kLanes * chunk + j;
+            const bool invalid = xr < valid0 || xr >= valid1;
+            masks_.push_back(invalid ? kNoCost : 0);
+            any = any || invalid;
+          }
+        }
+        if (!any) masks_.resize(masks_.size() - kLanes * kLanes);
+        maskIndex_.push_back(any ? static_cast<int>(masks_.size()) - kLanes * kLanes : -1);
+      }
+    }
     leftOrigin_ = -lowest;
     leftPairs_.assign(static_cast<std::size_t>(highest - lowest + kLanes), 0);
     leftFill_ = std::min(width_, highest);
@@ -169,10 +202,13 @@ class BandMatcher {
     // Cost rows: d from dLo - 1 (a row of "no cost" below) to dLo + 16 *
     // groups; entries xr from -front (left reads reach x - maxD).
     front_ = (count_ + 2 * kLanes) & ~(kLanes - 1);
-    costStride_ = front_ + std::max(rightEnd_, 0) + 3 * kLanes;
-    costs_.assign(static_cast<std::size_t>(kLanes * groups_ + 2) * costStride_, kNoCost);
+    // (right winners read 4 vectors from below rightEnd; gathers 2 bytes past
+    // an entry)
+    costStride_ = front_ + std::max(rightEnd_, 0) + 5 * kLanes;
+    costs_.assign(static_cast<std::size_t>(kLanes * groups_ + 2) * costStride_ + kLanes, kNoCost);
     zeros_.assign(static_cast<std::size_t>(width_), 0);
     textureColumns_.assign(static_cast<std::size_t>(x0_ + r_), 0);
+    textureSums_.assign(static_cast<std::size_t>(x0_ - bandX0_ + kLanes), 0);
   }
 
   HOROPTER_AVX2_TARGET void run(int y0, int y1) {
@@ -262,6 +298,11 @@ class BandMatcher {
             w[j] = sum;
           }
           transpose16(w, t);
+          const int mask = maskIndex_[chunkBase_[g] + chunk];
+          if (mask >= 0) {
+            for (int k = 0; k < kLanes; ++k)
+              t[k] = _mm256_or_si256(t[k], loadu(masks_.data() + mask + kLanes * k));
+          }
           const int xr = xrStart_[g] + kLanes * chunk;
           for (int k = 0; k < kLanes; ++k)
             storeu(costRow(dMin + k) + xr, t[k]);
@@ -281,15 +322,19 @@ class BandMatcher {
 
   HOROPTER_AVX2_TARGET void decideLeft(int y) {
     std::int16_t* out = disparity_.row<std::int16_t>(y);
-    const std::int16_t invalid = invalidDisparity(params_);
     const int ratio = params_.uniquenessRatio;
     const __m256i one = _mm256_set1_epi16(1);
-    alignas(32) std::uint16_t least[kLanes] = {}, best[kLanes] = {}, limits[kLanes] = {},
-                              within[kLanes] = {}, guardLeast[kLanes] = {};
-    int textureSum = 0;
+    const __m256i iota = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     if (useTexture_) {
+      // Window sums of the texture, per band pixel.
+      int sum = 0;
       for (int i = -r_; i < r_; ++i)
-        textureSum += textureColumns_[bandX0_ + i];
+        sum += textureColumns_[bandX0_ + i];
+      for (int x = bandX0_; x < x0_; ++x) {
+        sum += textureColumns_[x + r_];
+        textureSums_[x - bandX0_] = sum;
+        sum -= textureColumns_[x - r_];
+      }
     }
     for (int xv = bandX0_; xv < x0_; xv += kLanes) {
       // Pixels x = xv + j; k above xv + 15 - r - minD has no cost for any.
@@ -303,143 +348,163 @@ class BandMatcher {
         m = nm;
         kv = _mm256_add_epi16(kv, one);
       }
-      _mm256_store_si256(reinterpret_cast<__m256i*>(least), m);
-      _mm256_store_si256(reinterpret_cast<__m256i*>(best), b);
-      const bool limited = ratio > 0 || guards_ > 0;
-      const __m256i lim = limited ? uniquenessLimits(m, ratio) : m;
-      _mm256_store_si256(reinterpret_cast<__m256i*>(limits), lim);
+      const __m256i lim = ratio > 0 || guards_ > 0 ? uniquenessLimits(m, ratio) : m;
+      const __m256i xs = _mm256_add_epi16(iota, _mm256_set1_epi16(static_cast<std::int16_t>(xv)));
+      // Each pixel's range: k < n = min(count, x - r - minD + 1).
+      const __m256i n = _mm256_min_epi16(
+          _mm256_sub_epi16(xs, _mm256_set1_epi16(static_cast<std::int16_t>(r_ + minD_ - 1))),
+          _mm256_set1_epi16(static_cast<std::int16_t>(count_)));
+      const __m256i hasBelow = _mm256_cmpgt_epi16(b, _mm256_setzero_si256());
+      const __m256i hasAbove = _mm256_cmpgt_epi16(n, _mm256_add_epi16(b, one));
+      const __m256i below = neighbourCosts(xv, b, -1), above = neighbourCosts(xv, b, 1);
+      __m256i invalid = _mm256_setzero_si256();
+      if (useTexture_) {
+        const __m256i threshold = _mm256_set1_epi32(params_.textureThreshold);
+        const __m256i low0 =
+            _mm256_cmpgt_epi32(threshold, loadu(textureSums_.data() + (xv - bandX0_)));
+        const __m256i low1 =
+            _mm256_cmpgt_epi32(threshold, loadu(textureSums_.data() + (xv - bandX0_ + 8)));
+        invalid = _mm256_permute4x64_epi64(_mm256_packs_epi32(low0, low1), 0xD8);
+      }
       if (ratio > 0) {
-        __m256i n = _mm256_setzero_si256();
+        // Valid: the costs within the limit are the winner and those of its
+        // neighbours within it (masks are -1).
+        __m256i within = _mm256_setzero_si256();
         for (int k = 0; k < kEnd; ++k) {
           const int d = minD_ + k;
           const __m256i c = loadu(costRow(d) + xv - d);
-          n = _mm256_sub_epi16(n, _mm256_cmpeq_epi16(_mm256_max_epu16(c, lim), lim));
+          within = _mm256_add_epi16(within, _mm256_cmpeq_epi16(_mm256_max_epu16(c, lim), lim));
         }
-        _mm256_store_si256(reinterpret_cast<__m256i*>(within), n);
+        const auto le = [&](__m256i c) HOROPTER_AVX2_TARGET {
+          return _mm256_cmpeq_epi16(_mm256_max_epu16(c, lim), lim);
+        };
+        const __m256i neighbours = _mm256_add_epi16(_mm256_and_si256(hasBelow, le(below)),
+                                                    _mm256_and_si256(hasAbove, le(above)));
+        invalid = _mm256_or_si256(
+            invalid, _mm256_xor_si256(_mm256_cmpeq_epi16(within, _mm256_sub_epi16(neighbours, one)),
+                                      _mm256_set1_epi16(-1)));
       }
       if (guards_ > 0) {
-        // Checked disparity g counts where the right window fits:
-        // x - g < W - r (the left edge always holds in the band).
-        const __m256i xs = _mm256_add_epi16(
-            _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-            _mm256_set1_epi16(static_cast<std::int16_t>(xv)));
+        // The checked disparities' least (the sweep left "no cost" where
+        // one does not count) fails the pixel at or below the limit.
         __m256i gl = _mm256_set1_epi16(-1);
-        for (int n = 0; n < guards_; ++n) {
-          const int g = guardDisparity(n);
-          __m256i c = loadu(costRow(g) + xv - g);
-          if (xv + kLanes - 1 - g >= width_ - r_)
-            c = _mm256_or_si256(
-                c, _mm256_cmpgt_epi16(
-                       xs, _mm256_set1_epi16(static_cast<std::int16_t>(width_ - r_ - 1 + g))));
-          gl = _mm256_min_epu16(gl, c);
+        for (int i = 0; i < guards_; ++i) {
+          const int g = guardDisparity(i);
+          gl = _mm256_min_epu16(gl, loadu(costRow(g) + xv - g));
         }
-        _mm256_store_si256(reinterpret_cast<__m256i*>(guardLeast), gl);
+        invalid = _mm256_or_si256(invalid, _mm256_cmpeq_epi16(_mm256_max_epu16(gl, lim), lim));
       }
-      const int xEnd = std::min(x0_, xv + kLanes);
-      for (int x = xv; x < xEnd; ++x) {
-        const int j = x - xv;
-        if (useTexture_) textureSum += textureColumns_[x + r_];
-        out[x] =
-            decide(x, best[j], least[j], limits[j], within[j], guardLeast[j], textureSum, invalid);
-        if (useTexture_) textureSum -= textureColumns_[x - r_];
+      // Sub-pixel: the range's ends mirror the other side (a range of one:
+      // offset 0).
+      const __m256i cm =
+          _mm256_blendv_epi8(_mm256_blendv_epi8(m, above, hasAbove), below, hasBelow);
+      const __m256i cp =
+          _mm256_blendv_epi8(_mm256_blendv_epi8(m, below, hasBelow), above, hasAbove);
+      __m256i half[2];
+      for (int h = 0; h < 2; ++h) {
+        const auto widen = [&](__m256i v) HOROPTER_AVX2_TARGET {
+          return _mm256_cvtepu16_epi32(h == 0 ? _mm256_castsi256_si128(v)
+                                              : _mm256_extracti128_si256(v, 1));
+        };
+        const __m256i c0 = widen(m), lo = widen(cm), hi = widen(cp);
+        const __m256i diff = _mm256_sub_epi32(lo, hi);
+        const __m256i den =
+            _mm256_add_epi32(_mm256_sub_epi32(_mm256_add_epi32(lo, hi), _mm256_add_epi32(c0, c0)),
+                             _mm256_abs_epi32(diff));
+        // den = 0 only where cm = cp = c0: numerator 0, any divisor gives 0.
+        const __m256i off = divideTruncated(_mm256_slli_epi32(diff, 8),
+                                            _mm256_max_epi32(den, _mm256_set1_epi32(1)));
+        const __m256i d = _mm256_add_epi32(
+            widen(b), _mm256_set1_epi32(minD_));  // b < 2^15: the sign bit is clear
+        half[h] = _mm256_srai_epi32(
+            _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(d, 8), off), _mm256_set1_epi32(8)),
+            4);
+      }
+      const __m256i disparity =
+          _mm256_blendv_epi8(_mm256_permute4x64_epi64(_mm256_packs_epi32(half[0], half[1]), 0xD8),
+                             _mm256_set1_epi16(invalidDisparity(params_)), invalid);
+      if (xv + kLanes <= x0_) {
+        storeu(out + xv, disparity);
+      } else {
+        alignas(32) std::int16_t lanes[kLanes];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), disparity);
+        std::copy_n(lanes, x0_ - xv, out + xv);
       }
     }
   }
 
-  // One band pixel, as scalar decidePixel (its range: k < n).
-  HOROPTER_AVX2_TARGET std::int16_t decide(int x, int b, std::int64_t c0, int limit, int within,
-                                           int guardLeast, int textureSum,
-                                           std::int16_t invalid) const {
-    const int n = std::min(count_, x - r_ - minD_ + 1);
-    if (useTexture_ && textureSum < params_.textureThreshold) return invalid;
-    const auto cost = [&](int k) HOROPTER_AVX2_TARGET -> std::int64_t {
-      return costRow(minD_ + k)[x - minD_ - k];
-    };
-    const std::int64_t below = b > 0 ? cost(b - 1) : 0;
-    const std::int64_t above = b + 1 < n ? cost(b + 1) : 0;
-    if (params_.uniquenessRatio > 0) {
-      const int neighbours = (b > 0 && below <= limit) + (b + 1 < n && above <= limit);
-      if (within != 1 + neighbours) return invalid;
+  // C(b + step) of pixels xv + j (step -1 or 1), by gathers: row minD + k,
+  // entry x - minD - k, i.e. costs_[base + x + k * (stride - 1)].
+  HOROPTER_AVX2_TARGET __m256i neighbourCosts(int xv, __m256i b, int step) const {
+    const int base = static_cast<int>(costRow(minD_) - costs_.data()) - minD_ + xv;
+    const __m256i slope = _mm256_set1_epi32(costStride_ - 1);
+    const __m256i low = _mm256_set1_epi32(0xFFFF);
+    __m256i half[2];
+    for (int h = 0; h < 2; ++h) {
+      const __m256i k =
+          _mm256_add_epi32(_mm256_cvtepi16_epi32(h == 0 ? _mm256_castsi256_si128(b)
+                                                        : _mm256_extracti128_si256(b, 1)),
+                           _mm256_set1_epi32(step));
+      const __m256i index =
+          _mm256_add_epi32(_mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                                            _mm256_set1_epi32(base + 8 * h)),
+                           _mm256_mullo_epi32(k, slope));
+      half[h] = _mm256_and_si256(
+          _mm256_i32gather_epi32(reinterpret_cast<const int*>(costs_.data()), index, 2), low);
     }
-    if (guards_ > 0 && guardLeast <= limit) return invalid;
-    // The range's ends mirror the other side (a range of one: offset 0).
-    const std::int64_t cm = b > 0 ? below : (b + 1 < n ? above : c0);
-    const std::int64_t cp = b + 1 < n ? above : (b > 0 ? below : c0);
-    const std::int64_t den = cm + cp - 2 * c0 + std::abs(cm - cp);
-    const std::int64_t off = den > 0 ? (cm - cp) * 256 / den : 0;
-    const std::int64_t d = minD_ + b;
-    return static_cast<std::int16_t>((d * 256 + off + 8) >> 4);
+    return _mm256_permute4x64_epi64(_mm256_packus_epi32(half[0], half[1]), 0xD8);
   }
 
   HOROPTER_AVX2_TARGET void decideRight(int y) {
     std::int16_t* out = winnerRight_.row<std::int16_t>(y);
-    const __m256i iota = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m256i one = _mm256_set1_epi16(1);
-    const __m256i firstX = _mm256_set1_epi16(static_cast<std::int16_t>(bandX0_));
-    const __m256i lastX = _mm256_set1_epi16(static_cast<std::int16_t>(costedEnd_ - 1));
     const __m256i all = _mm256_set1_epi16(-1);
-    // Lanes whose left pixel xs + d lies outside [bandX0, costedEnd).
-    const auto outside = [&](__m256i xs) HOROPTER_AVX2_TARGET {
-      return _mm256_or_si256(_mm256_cmpgt_epi16(firstX, xs), _mm256_cmpgt_epi16(xs, lastX));
-    };
-    for (int xr0 = 0; xr0 < rightEndW_; xr0 += kLanes) {
-      const __m256i xr = _mm256_add_epi16(iota, _mm256_set1_epi16(static_cast<std::int16_t>(xr0)));
-      __m256i m = all;
-      __m256i best = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
-      // Rows where some lane's left pixel is in [bandX0, costedEnd); all
-      // lanes in [full0, full1].
-      const int dBegin = std::max(minD_, bandX0_ - xr0 - (kLanes - 1));
-      const int dEnd = std::min(maxD_ + 1, costedEnd_ - xr0);
-      const int full0 = std::max(dBegin, bandX0_ - xr0);
-      const int full1 = std::max(full0, std::min(dEnd, costedEnd_ - xr0 - (kLanes - 1)));
-      const auto take = [&](__m256i c, __m256i dv) HOROPTER_AVX2_TARGET {
-        const __m256i nm = _mm256_min_epu16(m, c);
-        best = _mm256_blendv_epi8(dv, best, _mm256_cmpeq_epi16(nm, m));
-        m = nm;
-      };
-      const auto masked = [&](int d) HOROPTER_AVX2_TARGET {
-        const __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(d));
-        const __m256i c =
-            _mm256_or_si256(loadu(costRow(d) + xr0), outside(_mm256_add_epi16(xr, dv)));
-        take(c, dv);
-      };
-      for (int d = dBegin; d < std::min(full0, dEnd); ++d)
-        masked(d);
-      __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(full0));
-      for (int d = full0; d < full1; ++d) {
-        take(loadu(costRow(d) + xr0), dv);
+    constexpr int kVectors = 4;
+    // Every entry a right pixel may not weigh is "no cost" (the sweep's
+    // masks): plain running minima, kVectors of 16 right pixels at a time.
+    for (int xr0 = 0; xr0 < rightEndW_; xr0 += kVectors * kLanes) {
+      __m256i m[kVectors], best[kVectors];
+      for (int v = 0; v < kVectors; ++v) {
+        m[v] = all;
+        best[v] = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
+      }
+      __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(minD_));
+      for (int d = minD_; d <= maxD_; ++d) {
+        const std::uint16_t* row = costRow(d) + xr0;
+        for (int v = 0; v < kVectors; ++v) {
+          const __m256i nm = _mm256_min_epu16(m[v], loadu(row + kLanes * v));
+          best[v] = _mm256_blendv_epi8(dv, best[v], _mm256_cmpeq_epi16(nm, m[v]));
+          m[v] = nm;
+        }
         dv = _mm256_add_epi16(dv, one);
       }
-      for (int d = full1; d < dEnd; ++d)
-        masked(d);
       if (guards_ > 0) {
         // The checked disparities in increasing g: the least (the smallest
         // g on ties) wins where it is <= the range's least.
-        const __m256i rightTop = _mm256_set1_epi16(static_cast<std::int16_t>(width_ - r_ - 1));
-        const __m256i noRightWindow = _mm256_cmpgt_epi16(xr, rightTop);
-        __m256i gl = all, gd = _mm256_setzero_si256();
-        for (int n = guards_ - 1; n >= 0; --n) {
-          const int g = guardDisparity(n);
-          const __m256i gv = _mm256_set1_epi16(static_cast<std::int16_t>(g));
-          const __m256i c =
-              _mm256_or_si256(loadu(costRow(g) + xr0),
-                              _mm256_or_si256(outside(_mm256_add_epi16(xr, gv)), noRightWindow));
-          const __m256i ngl = _mm256_min_epu16(gl, c);
-          gd = _mm256_blendv_epi8(
-              _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))), gd,
-              _mm256_cmpeq_epi16(ngl, gl));
-          gl = ngl;
+        for (int v = 0; v < kVectors; ++v) {
+          __m256i gl = all, gd = _mm256_setzero_si256();
+          for (int n = guards_ - 1; n >= 0; --n) {
+            const int g = guardDisparity(n);
+            const __m256i ngl = _mm256_min_epu16(gl, loadu(costRow(g) + xr0 + kLanes * v));
+            gd = _mm256_blendv_epi8(
+                _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))), gd,
+                _mm256_cmpeq_epi16(ngl, gl));
+            gl = ngl;
+          }
+          const __m256i wins = _mm256_andnot_si256(
+              _mm256_cmpeq_epi16(m[v], all), _mm256_cmpeq_epi16(_mm256_max_epu16(gl, m[v]), m[v]));
+          best[v] = _mm256_blendv_epi8(best[v], gd, wins);
         }
-        const __m256i wins = _mm256_andnot_si256(_mm256_cmpeq_epi16(m, all),
-                                                 _mm256_cmpeq_epi16(_mm256_max_epu16(gl, m), m));
-        best = _mm256_blendv_epi8(best, gd, wins);
       }
-      if (xr0 + kLanes <= rightEndW_) {
-        storeu(out + xr0, best);
-      } else {
-        alignas(32) std::int16_t lanes[kLanes];
-        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), best);
-        std::copy_n(lanes, rightEndW_ - xr0, out + xr0);
+      for (int v = 0; v < kVectors; ++v) {
+        const int xr = xr0 + kLanes * v;
+        if (xr + kLanes <= rightEndW_) {
+          storeu(out + xr, best[v]);
+        } else if (xr < rightEndW_) {
+          alignas(32) std::int16_t lanes[kLanes];
+          _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), best[v]);
+          std::copy_n(lanes, rightEndW_ - xr, out + xr);
+        }
       }
     }
   }
@@ -460,6 +525,9 @@ class BandMatcher {
   const int dLo_, groups_;
   const bool useTexture_;
   std::vector<int> xrStart_, chunks_;  // per group
+  std::vector<int> chunkBase_;         // per group: its first chunk's index in maskIndex_
+  std::vector<int> maskIndex_;         // per chunk: its masks' offset in masks_, -1: none
+  std::vector<std::uint16_t> masks_;
   int columnsEnd_ = 0;
   int leftOrigin_ = 0, leftFill_ = 0, rightFill_ = 0;
   std::vector<std::uint16_t> leftPairs_;   // [leftOrigin + x]
@@ -470,6 +538,7 @@ class BandMatcher {
   std::vector<std::uint16_t> costs_;  // [d - dLo + 1][front + xr]
   std::vector<std::uint8_t> zeros_;
   std::vector<int> textureColumns_;  // [x]: texture sums over the window's rows
+  std::vector<int> textureSums_;     // [x - bandX0]: window sums
 };
 
 }  // namespace

@@ -61,8 +61,8 @@ TEST(LeftBandAvx2, EqualsScalarOnRandomConfigurations) {
         if (pick(0, 7) != 0) right.row<std::uint8_t>(y)[x] = left.row<std::uint8_t>(y)[x + shift];
     const TestImage texture = randomImage(w, h, PixelType::U8C1, 9000 + n, 0, 40);
     fast += static_cast<long>(hi) * p.blockSize * p.blockSize < 0xFFFF;
-    SCOPED_TRACE("case " + std::to_string(n) + ": " + std::to_string(w) + "x" +
-                 std::to_string(h) + ", guard step " + std::to_string(guard.step) + " down to " +
+    SCOPED_TRACE("case " + std::to_string(n) + ": " + std::to_string(w) + "x" + std::to_string(h) +
+                 ", guard step " + std::to_string(guard.step) + " down to " +
                  std::to_string(guard.lowest) + ", " + describe(p));
     ASSERT_FALSE(matchRegion(w, h, p).empty());
 
