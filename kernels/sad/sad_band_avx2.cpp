@@ -131,7 +131,8 @@ class BandMatcher {
   HOROPTER_AVX2_TARGET BandMatcher(const ConstImageView& left, const ConstImageView& right,
                                    const ConstImageView& texture, const StereoParams& params,
                                    const BelowRangeGuard& guard, const ImageView& disparity,
-                                   const ImageView& winnerRight, const MatchRegion& region)
+                                   const ImageView& winnerRight, const MatchRegion& region,
+                                   bool narrow)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -153,7 +154,8 @@ class BandMatcher {
         rightEndW_(std::clamp(rightEnd_, 0, width_)),
         dLo_(minD_ - guards_ * guardStep_),
         groups_((maxD_ - dLo_ + kLanes) / kLanes),
-        useTexture_(params.textureThreshold > 0) {
+        useTexture_(params.textureThreshold > 0),
+        narrow_(narrow) {
     // Per group: the right pixels it costs, [xrStart, xrStart + 16 * chunks).
     int columnsEnd = 0, lowest = 0, highest = width_;
     for (int g = 0; g < groups_; ++g) {
@@ -260,22 +262,38 @@ class BandMatcher {
   // kCosts, the window costs too, stored by row (see Strategy).
   template <bool kCosts>
   HOROPTER_AVX2_TARGET void sweep() {
+    if (narrow_)
+      sweep<kCosts, true>();
+    else
+      sweep<kCosts, false>();
+  }
+
+  // kNarrow: every |L - R| <= 127, the wrapped byte difference's absolute
+  // value is exact (2 instructions instead of 3).
+  template <bool kCosts, bool kNarrow>
+  HOROPTER_AVX2_TARGET void sweep() {
     const __m256i weights = _mm256_set1_epi16(static_cast<std::int16_t>(0xFF01));
-    const int side = 2 * r_ + 1;
+    const int r = r_, side = 2 * r_ + 1;
+    const std::ptrdiff_t stride = costStride_;
+    const std::uint16_t* const masks = masks_.data();
     for (int g = 0; g < groups_; ++g) {
       const int chunks = chunks_[g];
       if (chunks == 0) continue;
       const int dMin = dLo_ + kLanes * g;
-      const int c0 = xrStart_[g] - r_;
-      const int c1 = c0 + 2 * r_ + kLanes * chunks;
-      const std::uint16_t* lp = leftPairs_.data() + leftOrigin_ + dMin;
-      const std::uint16_t* rp = rightPairs_.data();
-      std::int16_t* col =
+      const int c0 = xrStart_[g] - r;
+      const int c1 = c0 + 2 * r + kLanes * chunks;
+      const std::uint16_t* const lp = leftPairs_.data() + leftOrigin_ + dMin;
+      const std::uint16_t* const rp = rightPairs_.data();
+      std::int16_t* const col =
           columnSums_.data() + static_cast<std::ptrdiff_t>(g) * columnStride_ + pad_ * kLanes;
       const auto update = [&](int c) HOROPTER_AVX2_TARGET {
         const __m256i l = loadu(lp + c);
         const __m256i rb = _mm256_set1_epi16(static_cast<std::int16_t>(rp[c]));
-        const __m256i ad = _mm256_or_si256(_mm256_subs_epu8(l, rb), _mm256_subs_epu8(rb, l));
+        __m256i ad;
+        if constexpr (kNarrow)
+          ad = _mm256_abs_epi8(_mm256_sub_epi8(l, rb));
+        else
+          ad = _mm256_or_si256(_mm256_subs_epu8(l, rb), _mm256_subs_epu8(rb, l));
         std::int16_t* p = col + c * kLanes;
         const __m256i v = _mm256_add_epi16(loadu(p), _mm256_maddubs_epi16(ad, weights));
         storeu(p, v);
@@ -286,26 +304,27 @@ class BandMatcher {
           update(c);
       } else {
         __m256i sum = _mm256_setzero_si256();
-        for (int c = c0; c < c0 + 2 * r_; ++c)
+        for (int c = c0; c < c0 + 2 * r; ++c)
           sum = _mm256_add_epi16(sum, update(c));
-        for (int chunk = 0; chunk < chunks; ++chunk) {
+        const int* const maskIndex = maskIndex_.data() + chunkBase_[g];
+        std::uint16_t* row = costRow(dMin) + xrStart_[g];
+        for (int chunk = 0; chunk < chunks; ++chunk, row += kLanes) {
           __m256i w[kLanes], t[kLanes];
-          const int cc = c0 + 2 * r_ + kLanes * chunk;
+          const int cc = c0 + 2 * r + kLanes * chunk;
+#pragma GCC unroll 16
           for (int j = 0; j < kLanes; ++j) {
-            const int c = cc + j;
-            sum = _mm256_sub_epi16(_mm256_add_epi16(sum, update(c)),
-                                   loadu(col + (c - side) * kLanes));
+            sum = _mm256_sub_epi16(_mm256_add_epi16(sum, update(cc + j)),
+                                   loadu(col + (cc + j - side) * kLanes));
             w[j] = sum;
           }
           transpose16(w, t);
-          const int mask = maskIndex_[chunkBase_[g] + chunk];
-          if (mask >= 0) {
+          if (const int mask = maskIndex[chunk]; mask >= 0) {
             for (int k = 0; k < kLanes; ++k)
-              t[k] = _mm256_or_si256(t[k], loadu(masks_.data() + mask + kLanes * k));
+              t[k] = _mm256_or_si256(t[k], loadu(masks + mask + kLanes * k));
           }
-          const int xr = xrStart_[g] + kLanes * chunk;
-          for (int k = 0; k < kLanes; ++k)
-            storeu(costRow(dMin + k) + xr, t[k]);
+          std::uint16_t* dst = row;
+          for (int k = 0; k < kLanes; ++k, dst += stride)
+            storeu(dst, t[k]);
         }
       }
     }
@@ -339,14 +358,15 @@ class BandMatcher {
     for (int xv = bandX0_; xv < x0_; xv += kLanes) {
       // Pixels x = xv + j; k above xv + 15 - r - minD has no cost for any.
       const int kEnd = std::min(count_, xv + kLanes - r_ - minD_);
-      __m256i m = _mm256_set1_epi16(-1), b = _mm256_setzero_si256(), kv = b;
-      for (int k = 0; k < kEnd; ++k) {
+      // The least cost, in decreasing k with <= (the smallest k on ties).
+      __m256i m = _mm256_set1_epi16(-1), b = _mm256_setzero_si256();
+      __m256i kv = _mm256_set1_epi16(static_cast<std::int16_t>(kEnd - 1));
+      for (int k = kEnd - 1; k >= 0; --k) {
         const int d = minD_ + k;
         const __m256i c = loadu(costRow(d) + xv - d);
-        const __m256i nm = _mm256_min_epu16(m, c);
-        b = _mm256_blendv_epi8(kv, b, _mm256_cmpeq_epi16(nm, m));
-        m = nm;
-        kv = _mm256_add_epi16(kv, one);
+        m = _mm256_min_epu16(m, c);
+        b = _mm256_blendv_epi8(b, kv, _mm256_cmpeq_epi16(m, c));
+        kv = _mm256_sub_epi16(kv, one);
       }
       const __m256i lim = ratio > 0 || guards_ > 0 ? uniquenessLimits(m, ratio) : m;
       const __m256i xs = _mm256_add_epi16(iota, _mm256_set1_epi16(static_cast<std::int16_t>(xv)));
@@ -457,56 +477,88 @@ class BandMatcher {
 
   HOROPTER_AVX2_TARGET void decideRight(int y) {
     std::int16_t* out = winnerRight_.row<std::int16_t>(y);
-    const __m256i one = _mm256_set1_epi16(1);
-    const __m256i all = _mm256_set1_epi16(-1);
-    constexpr int kVectors = 4;
-    // Every entry a right pixel may not weigh is "no cost" (the sweep's
-    // masks): plain running minima, kVectors of 16 right pixels at a time.
-    for (int xr0 = 0; xr0 < rightEndW_; xr0 += kVectors * kLanes) {
-      __m256i m[kVectors], best[kVectors];
-      for (int v = 0; v < kVectors; ++v) {
-        m[v] = all;
-        best[v] = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
-      }
-      __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(minD_));
-      for (int d = minD_; d <= maxD_; ++d) {
-        const std::uint16_t* row = costRow(d) + xr0;
-        for (int v = 0; v < kVectors; ++v) {
-          const __m256i nm = _mm256_min_epu16(m[v], loadu(row + kLanes * v));
-          best[v] = _mm256_blendv_epi8(dv, best[v], _mm256_cmpeq_epi16(nm, m[v]));
-          m[v] = nm;
-        }
-        dv = _mm256_add_epi16(dv, one);
-      }
-      if (guards_ > 0) {
-        // The checked disparities in increasing g: the least (the smallest
-        // g on ties) wins where it is <= the range's least.
-        for (int v = 0; v < kVectors; ++v) {
-          __m256i gl = all, gd = _mm256_setzero_si256();
-          for (int n = guards_ - 1; n >= 0; --n) {
-            const int g = guardDisparity(n);
-            const __m256i ngl = _mm256_min_epu16(gl, loadu(costRow(g) + xr0 + kLanes * v));
-            gd = _mm256_blendv_epi8(
-                _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))), gd,
-                _mm256_cmpeq_epi16(ngl, gl));
-            gl = ngl;
-          }
-          const __m256i wins = _mm256_andnot_si256(
-              _mm256_cmpeq_epi16(m[v], all), _mm256_cmpeq_epi16(_mm256_max_epu16(gl, m[v]), m[v]));
-          best[v] = _mm256_blendv_epi8(best[v], gd, wins);
-        }
-      }
-      for (int v = 0; v < kVectors; ++v) {
-        const int xr = xr0 + kLanes * v;
-        if (xr + kLanes <= rightEndW_) {
-          storeu(out + xr, best[v]);
-        } else if (xr < rightEndW_) {
-          alignas(32) std::int16_t lanes[kLanes];
-          _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), best[v]);
-          std::copy_n(lanes, rightEndW_ - xr, out + xr);
-        }
+    for (int xr0 = 0; xr0 < rightEndW_;) {
+      switch (std::min(4, (rightEndW_ - xr0 + kLanes - 1) / kLanes)) {
+        case 1:
+          xr0 = decideRight<1>(xr0, out);
+          break;
+        case 2:
+          xr0 = decideRight<2>(xr0, out);
+          break;
+        case 3:
+          xr0 = decideRight<3>(xr0, out);
+          break;
+        default:
+          xr0 = decideRight<4>(xr0, out);
+          break;
       }
     }
+  }
+
+  // kVectors of 16 right pixels from xr0; returns the next xr0. Every entry
+  // a right pixel may not weigh is "no cost" (the sweep's masks), so these
+  // are plain running minima: in decreasing d with <=, the smallest d wins
+  // ties; "no cost" entries win only where every entry is one, and there
+  // the pixel has no winner.
+  template <int kVectors>
+  HOROPTER_AVX2_TARGET int decideRight(int xr0, std::int16_t* out) {
+    const __m256i one = _mm256_set1_epi16(1);
+    const __m256i all = _mm256_set1_epi16(-1);
+    __m256i m[kVectors], best[kVectors];
+#pragma GCC unroll 4
+    for (int v = 0; v < kVectors; ++v) {
+      m[v] = all;
+      best[v] = all;
+    }
+    __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(maxD_));
+    for (int d = maxD_; d >= minD_; --d) {
+      const std::uint16_t* row = costRow(d) + xr0;
+#pragma GCC unroll 4
+      for (int v = 0; v < kVectors; ++v) {
+        const __m256i c = loadu(row + kLanes * v);
+        m[v] = _mm256_min_epu16(m[v], c);
+        best[v] = _mm256_blendv_epi8(best[v], dv, _mm256_cmpeq_epi16(m[v], c));
+      }
+      dv = _mm256_sub_epi16(dv, one);
+    }
+    // Copies: the loop above then keeps m and best in registers.
+    __m256i least[kVectors], winner[kVectors];
+#pragma GCC unroll 4
+    for (int v = 0; v < kVectors; ++v) {
+      least[v] = m[v];
+      winner[v] = best[v];
+    }
+    const __m256i noWinner = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
+    for (int v = 0; v < kVectors; ++v) {
+      const __m256i none = _mm256_cmpeq_epi16(least[v], all);
+      winner[v] = _mm256_blendv_epi8(winner[v], noWinner, none);
+      if (guards_ > 0) {
+        // The checked disparities: the least (the smallest g on ties, in
+        // decreasing g with <=) wins where it is <= the range's least and
+        // the pixel has a winner.
+        __m256i gl = all, gd = all;
+        for (int n = 0; n < guards_; ++n) {
+          const int g = guardDisparity(n);
+          const __m256i c = loadu(costRow(g) + xr0 + kLanes * v);
+          gl = _mm256_min_epu16(gl, c);
+          gd = _mm256_blendv_epi8(
+              gd, _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))),
+              _mm256_cmpeq_epi16(gl, c));
+        }
+        const __m256i wins =
+            _mm256_andnot_si256(none, _mm256_cmpeq_epi16(_mm256_max_epu16(gl, least[v]), least[v]));
+        winner[v] = _mm256_blendv_epi8(winner[v], gd, wins);
+      }
+      const int xr = xr0 + kLanes * v;
+      if (xr + kLanes <= rightEndW_) {
+        storeu(out + xr, winner[v]);
+      } else if (xr < rightEndW_) {
+        alignas(32) std::int16_t lanes[kLanes];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), winner[v]);
+        std::copy_n(lanes, rightEndW_ - xr, out + xr);
+      }
+    }
+    return xr0 + kVectors * kLanes;
   }
 
   const ConstImageView& left_;
@@ -524,6 +576,7 @@ class BandMatcher {
   // Swept disparities: dLo_ (the lowest checked) .. dLo_ + 16 * groups_ - 1.
   const int dLo_, groups_;
   const bool useTexture_;
+  const bool narrow_;                  // every |L - R| <= 127 (x-Sobel inputs)
   std::vector<int> xrStart_, chunks_;  // per group
   std::vector<int> chunkBase_;         // per group: its first chunk's index in maskIndex_
   std::vector<int> maskIndex_;         // per chunk: its masks' offset in masks_, -1: none
@@ -579,7 +632,8 @@ HOROPTER_AVX2_TARGET void matchLeftBand(const ConstImageView& left, const ConstI
     scalar::matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows);
     return;
   }
-  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region);
+  const bool narrow = costBound <= 127 * side * side;
+  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, narrow);
   matcher.run(region.y0, region.y1);
 }
 
