@@ -132,7 +132,7 @@ class BandMatcher {
                                    const ConstImageView& texture, const StereoParams& params,
                                    const BelowRangeGuard& guard, const ImageView& disparity,
                                    const ImageView& winnerRight, const MatchRegion& region,
-                                   bool narrow)
+                                   bool narrow, const RegionLeast& regionLeast)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -155,13 +155,16 @@ class BandMatcher {
         dLo_(minD_ - guards_ * guardStep_),
         groups_((maxD_ - dLo_ + kLanes) / kLanes),
         useTexture_(params.textureThreshold > 0),
-        narrow_(narrow) {
+        narrow_(narrow),
+        triangle_(regionLeast.least != nullptr && guards_ == 0),
+        regionLeast_(regionLeast),
+        y0_(region.y0) {
     // Per group: the right pixels it costs, [xrStart, xrStart + 16 * chunks).
     int columnsEnd = 0, lowest = 0, highest = width_;
     for (int g = 0; g < groups_; ++g) {
       const int dMin = dLo_ + kLanes * g, dMax = dMin + kLanes - 1;
       const int start = std::max(r_, bandX0_ - dMax);
-      const int end = std::min({rightEnd_, costedEnd_ - dMin, width_ - r_});
+      const int end = std::min({rightEnd_, costedEnd_ - dMin, width_ - r_, bandEnd(dMin)});
       const int chunks = end > start ? (end - start + kLanes - 1) / kLanes : 0;
       xrStart_.push_back(start);
       chunks_.push_back(chunks);
@@ -181,7 +184,7 @@ class BandMatcher {
         for (int k = 0; k < kLanes; ++k) {
           const int d = dLo_ + kLanes * g + k;
           const int valid0 = std::max(r_, bandX0_ - d);
-          const int valid1 = std::min({rightEnd_, costedEnd_ - d, width_ - r_});
+          const int valid1 = std::min({rightEnd_, costedEnd_ - d, width_ - r_, bandEnd(d)});
           for (int j = 0; j < kLanes; ++j) {
             const int xr = xrStart_[g] + kLanes * chunk + j;
             const bool invalid = xr < valid0 || xr >= valid1;
@@ -235,6 +238,9 @@ class BandMatcher {
            static_cast<std::ptrdiff_t>(d - dLo_ + 1) * costStride_ + front_;
   }
   HOROPTER_AVX2_TARGET int guardDisparity(int n) const { return minD_ - (n + 1) * guardStep_; }
+  // The right pixels costed at d end where the left pixel reaches x0 when
+  // the region's least costs are known (triangle_).
+  HOROPTER_AVX2_TARGET int bandEnd(int d) const { return triangle_ ? x0_ - d : 1 << 30; }
 
   // leftPairs_[x] = L(x, in) | L(x, out) << 8, rightPairs_[c] the same of R
   // (out < 0: zeros, the first rows' warm-up).
@@ -480,16 +486,16 @@ class BandMatcher {
     for (int xr0 = 0; xr0 < rightEndW_;) {
       switch (std::min(4, (rightEndW_ - xr0 + kLanes - 1) / kLanes)) {
         case 1:
-          xr0 = decideRight<1>(xr0, out);
+          xr0 = decideRight<1>(y, xr0, out);
           break;
         case 2:
-          xr0 = decideRight<2>(xr0, out);
+          xr0 = decideRight<2>(y, xr0, out);
           break;
         case 3:
-          xr0 = decideRight<3>(xr0, out);
+          xr0 = decideRight<3>(y, xr0, out);
           break;
         default:
-          xr0 = decideRight<4>(xr0, out);
+          xr0 = decideRight<4>(y, xr0, out);
           break;
       }
     }
@@ -501,7 +507,7 @@ class BandMatcher {
   // ties; "no cost" entries win only where every entry is one, and there
   // the pixel has no winner.
   template <int kVectors>
-  HOROPTER_AVX2_TARGET int decideRight(int xr0, std::int16_t* out) {
+  HOROPTER_AVX2_TARGET int decideRight(int y, int xr0, std::int16_t* out) {
     const __m256i one = _mm256_set1_epi16(1);
     const __m256i all = _mm256_set1_epi16(-1);
     __m256i m[kVectors], best[kVectors];
@@ -510,8 +516,10 @@ class BandMatcher {
       m[v] = all;
       best[v] = all;
     }
-    __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(maxD_));
-    for (int d = maxD_; d >= minD_; --d) {
+    // (triangle_: rows above x0 - 1 - xr0 hold no cost of these pixels)
+    const int top = triangle_ ? std::min(maxD_, x0_ - 1 - xr0) : maxD_;
+    __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(top));
+    for (int d = top; d >= minD_; --d) {
       const std::uint16_t* row = costRow(d) + xr0;
 #pragma GCC unroll 4
       for (int v = 0; v < kVectors; ++v) {
@@ -530,8 +538,22 @@ class BandMatcher {
     }
     const __m256i noWinner = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
     for (int v = 0; v < kVectors; ++v) {
+      const int xr = xr0 + kLanes * v;
       const __m256i none = _mm256_cmpeq_epi16(least[v], all);
-      winner[v] = _mm256_blendv_epi8(winner[v], noWinner, none);
+      if (triangle_) {
+        // The band's winner where it has one and its cost is <= the
+        // region's least (its d are the smaller); else the region's.
+        alignas(32) std::int16_t lanes[kLanes] = {};
+        std::copy_n(out + xr, std::clamp(rightEndW_ - xr, 0, kLanes), lanes);
+        const __m256i region = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes));
+        const __m256i regionLeast =
+            loadu(regionLeast_.least + (y - y0_) * regionLeast_.stride + xr);
+        const __m256i wins = _mm256_andnot_si256(
+            none, _mm256_cmpeq_epi16(_mm256_max_epu16(least[v], regionLeast), regionLeast));
+        winner[v] = _mm256_blendv_epi8(region, winner[v], wins);
+      } else {
+        winner[v] = _mm256_blendv_epi8(winner[v], noWinner, none);
+      }
       if (guards_ > 0) {
         // The checked disparities: the least (the smallest g on ties, in
         // decreasing g with <=) wins where it is <= the range's least and
@@ -549,7 +571,6 @@ class BandMatcher {
             _mm256_andnot_si256(none, _mm256_cmpeq_epi16(_mm256_max_epu16(gl, least[v]), least[v]));
         winner[v] = _mm256_blendv_epi8(winner[v], gd, wins);
       }
-      const int xr = xr0 + kLanes * v;
       if (xr + kLanes <= rightEndW_) {
         storeu(out + xr, winner[v]);
       } else if (xr < rightEndW_) {
@@ -576,7 +597,13 @@ class BandMatcher {
   // Swept disparities: dLo_ (the lowest checked) .. dLo_ + 16 * groups_ - 1.
   const int dLo_, groups_;
   const bool useTexture_;
-  const bool narrow_;                  // every |L - R| <= 127 (x-Sobel inputs)
+  const bool narrow_;  // every |L - R| <= 127 (x-Sobel inputs)
+  // The region's least costs are known (RegionLeast, no guard): only the
+  // band's own candidates (x < x0) are costed, and a right pixel's winner
+  // from them replaces the region's where its cost is <= the region's least.
+  const bool triangle_;
+  const RegionLeast regionLeast_;
+  const int y0_;
   std::vector<int> xrStart_, chunks_;  // per group
   std::vector<int> chunkBase_;         // per group: its first chunk's index in maskIndex_
   std::vector<int> maskIndex_;         // per chunk: its masks' offset in masks_, -1: none
@@ -600,7 +627,7 @@ HOROPTER_AVX2_TARGET void matchLeftBand(const ConstImageView& left, const ConstI
                                         const ConstImageView& texture, const StereoParams& params,
                                         const BelowRangeGuard& guard, const ImageView& disparity,
                                         const ImageView& winnerRight, RowRange rows,
-                                        std::int64_t costBound) {
+                                        std::int64_t costBound, const RegionLeast& regionLeast) {
   MatchRegion region = matchRegion(left.width, left.height, params);
   if (region.empty() || region.bandX0 == region.x0) return;
   region.y0 = std::max(region.y0, rows.begin);
@@ -633,7 +660,8 @@ HOROPTER_AVX2_TARGET void matchLeftBand(const ConstImageView& left, const ConstI
     return;
   }
   const bool narrow = costBound <= 127 * side * side;
-  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, narrow);
+  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, narrow,
+                      regionLeast);
   matcher.run(region.y0, region.y1);
 }
 

@@ -3,7 +3,8 @@
 // across and above zero, band widths from 1 to the whole range, blocks up to
 // 33 (past the 16-bit bound: the scalar fallback, and under it with narrow
 // inputs), the guard with steps 1 to 7, uniqueness and texture on and off,
-// widths just above the smallest the region allows, stripes of rows.
+// widths just above the smallest the region allows, stripes of rows; and
+// avx2::matchLeftBand alone after a region-only pass.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -76,6 +77,17 @@ TEST(LeftBandAvx2, EqualsScalarOnRandomConfigurations) {
                         gotRight.view(), rows);
     ASSERT_TRUE(sameImage(want.view(), got.view())) << "disparity";
     ASSERT_TRUE(sameImage(wantRight.view(), gotRight.view())) << "winnerRight";
+    // avx2::matchLeftBand alone (its contract: after a region-only pass; no
+    // region least costs, so it costs every candidate of the right pixels).
+    StereoParams regionOnly = p;
+    regionOnly.leftBand = 0;
+    TestImage alone(w, h, PixelType::S16C1), aloneRight(w, h, PixelType::S16C1);
+    avx2::matchBlocks(left.view(), right.view(), texture.view(), regionOnly, guard, alone.view(),
+                      aloneRight.view(), RowRange{0, h});
+    avx2::matchLeftBand(left.view(), right.view(), texture.view(), p, guard, alone.view(),
+                        aloneRight.view(), RowRange{0, h});
+    ASSERT_TRUE(sameImage(want.view(), alone.view())) << "disparity, band alone";
+    ASSERT_TRUE(sameImage(wantRight.view(), aloneRight.view())) << "winnerRight, band alone";
     const MatchRegion region = matchRegion(w, h, p);
     for (int y = region.y0; y < region.y1; ++y)
       for (int x = region.bandX0; x < region.x0; ++x)
