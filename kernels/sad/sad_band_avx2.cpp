@@ -160,7 +160,7 @@ class BandMatcher {
         regionLeast_(regionLeast),
         y0_(region.y0) {
     // Per group: the right pixels it costs, [xrStart, xrStart + 16 * chunks).
-    int columnsEnd = 0, lowest = 0, highest = width_;
+    int columnsEnd = 0, lowest = 0, highest = 0;
     for (int g = 0; g < groups_; ++g) {
       const int dMin = dLo_ + kLanes * g, dMax = dMin + kLanes - 1;
       const int start = std::max(r_, bandX0_ - dMax);
@@ -367,6 +367,7 @@ class BandMatcher {
       // The least cost, in decreasing k with <= (the smallest k on ties).
       __m256i m = _mm256_set1_epi16(-1), b = _mm256_setzero_si256();
       __m256i kv = _mm256_set1_epi16(static_cast<std::int16_t>(kEnd - 1));
+#pragma GCC unroll 4
       for (int k = kEnd - 1; k >= 0; --k) {
         const int d = minD_ + k;
         const __m256i c = loadu(costRow(d) + xv - d);
@@ -396,6 +397,7 @@ class BandMatcher {
         // Valid: the costs within the limit are the winner and those of its
         // neighbours within it (masks are -1).
         __m256i within = _mm256_setzero_si256();
+#pragma GCC unroll 4
         for (int k = 0; k < kEnd; ++k) {
           const int d = minD_ + k;
           const __m256i c = loadu(costRow(d) + xv - d);
@@ -481,78 +483,42 @@ class BandMatcher {
     return _mm256_permute4x64_epi64(_mm256_packus_epi32(half[0], half[1]), 0xD8);
   }
 
+  // 16 right pixels at a time. Every entry a right pixel may not weigh is
+  // "no cost" (the sweep's masks), so these are plain running minima: in
+  // decreasing d with <=, the smallest d wins ties; "no cost" entries win
+  // only where every entry is one, and there the pixel has no winner.
   HOROPTER_AVX2_TARGET void decideRight(int y) {
     std::int16_t* out = winnerRight_.row<std::int16_t>(y);
-    for (int xr0 = 0; xr0 < rightEndW_;) {
-      switch (std::min(4, (rightEndW_ - xr0 + kLanes - 1) / kLanes)) {
-        case 1:
-          xr0 = decideRight<1>(y, xr0, out);
-          break;
-        case 2:
-          xr0 = decideRight<2>(y, xr0, out);
-          break;
-        case 3:
-          xr0 = decideRight<3>(y, xr0, out);
-          break;
-        default:
-          xr0 = decideRight<4>(y, xr0, out);
-          break;
-      }
-    }
-  }
-
-  // kVectors of 16 right pixels from xr0; returns the next xr0. Every entry
-  // a right pixel may not weigh is "no cost" (the sweep's masks), so these
-  // are plain running minima: in decreasing d with <=, the smallest d wins
-  // ties; "no cost" entries win only where every entry is one, and there
-  // the pixel has no winner.
-  template <int kVectors>
-  HOROPTER_AVX2_TARGET int decideRight(int y, int xr0, std::int16_t* out) {
     const __m256i one = _mm256_set1_epi16(1);
     const __m256i all = _mm256_set1_epi16(-1);
-    __m256i m[kVectors], best[kVectors];
-#pragma GCC unroll 4
-    for (int v = 0; v < kVectors; ++v) {
-      m[v] = all;
-      best[v] = all;
-    }
-    // (triangle_: rows above x0 - 1 - xr0 hold no cost of these pixels)
-    const int top = triangle_ ? std::min(maxD_, x0_ - 1 - xr0) : maxD_;
-    __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(top));
-    for (int d = top; d >= minD_; --d) {
-      const std::uint16_t* row = costRow(d) + xr0;
-#pragma GCC unroll 4
-      for (int v = 0; v < kVectors; ++v) {
-        const __m256i c = loadu(row + kLanes * v);
-        m[v] = _mm256_min_epu16(m[v], c);
-        best[v] = _mm256_blendv_epi8(best[v], dv, _mm256_cmpeq_epi16(m[v], c));
-      }
-      dv = _mm256_sub_epi16(dv, one);
-    }
-    // Copies: the loop above then keeps m and best in registers.
-    __m256i least[kVectors], winner[kVectors];
-#pragma GCC unroll 4
-    for (int v = 0; v < kVectors; ++v) {
-      least[v] = m[v];
-      winner[v] = best[v];
-    }
     const __m256i noWinner = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
-    for (int v = 0; v < kVectors; ++v) {
-      const int xr = xr0 + kLanes * v;
-      const __m256i none = _mm256_cmpeq_epi16(least[v], all);
+    for (int xr = 0; xr < rightEndW_; xr += kLanes) {
+      // (triangle_: rows above x0 - 1 - xr hold no cost of these pixels)
+      const int top = triangle_ ? std::min(maxD_, x0_ - 1 - xr) : maxD_;
+      __m256i least = all, winner = all;
+      __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(top));
+      const std::uint16_t* row = costRow(top) + xr;
+#pragma GCC unroll 4
+      for (int d = top; d >= minD_; --d, row -= costStride_) {
+        const __m256i c = loadu(row);
+        least = _mm256_min_epu16(least, c);
+        winner = _mm256_blendv_epi8(winner, dv, _mm256_cmpeq_epi16(least, c));
+        dv = _mm256_sub_epi16(dv, one);
+      }
+      const __m256i none = _mm256_cmpeq_epi16(least, all);
       if (triangle_) {
         // The band's winner where it has one and its cost is <= the
         // region's least (its d are the smaller); else the region's.
         alignas(32) std::int16_t lanes[kLanes] = {};
-        std::copy_n(out + xr, std::clamp(rightEndW_ - xr, 0, kLanes), lanes);
+        std::copy_n(out + xr, std::min(rightEndW_ - xr, kLanes), lanes);
         const __m256i region = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes));
         const __m256i regionLeast =
             loadu(regionLeast_.least + (y - y0_) * regionLeast_.stride + xr);
         const __m256i wins = _mm256_andnot_si256(
-            none, _mm256_cmpeq_epi16(_mm256_max_epu16(least[v], regionLeast), regionLeast));
-        winner[v] = _mm256_blendv_epi8(region, winner[v], wins);
+            none, _mm256_cmpeq_epi16(_mm256_max_epu16(least, regionLeast), regionLeast));
+        winner = _mm256_blendv_epi8(region, winner, wins);
       } else {
-        winner[v] = _mm256_blendv_epi8(winner[v], noWinner, none);
+        winner = _mm256_blendv_epi8(winner, noWinner, none);
       }
       if (guards_ > 0) {
         // The checked disparities: the least (the smallest g on ties, in
@@ -561,25 +527,24 @@ class BandMatcher {
         __m256i gl = all, gd = all;
         for (int n = 0; n < guards_; ++n) {
           const int g = guardDisparity(n);
-          const __m256i c = loadu(costRow(g) + xr0 + kLanes * v);
+          const __m256i c = loadu(costRow(g) + xr);
           gl = _mm256_min_epu16(gl, c);
           gd = _mm256_blendv_epi8(
               gd, _mm256_set1_epi16(static_cast<std::int16_t>(std::min(g, minD_ - 2))),
               _mm256_cmpeq_epi16(gl, c));
         }
         const __m256i wins =
-            _mm256_andnot_si256(none, _mm256_cmpeq_epi16(_mm256_max_epu16(gl, least[v]), least[v]));
-        winner[v] = _mm256_blendv_epi8(winner[v], gd, wins);
+            _mm256_andnot_si256(none, _mm256_cmpeq_epi16(_mm256_max_epu16(gl, least), least));
+        winner = _mm256_blendv_epi8(winner, gd, wins);
       }
       if (xr + kLanes <= rightEndW_) {
-        storeu(out + xr, winner[v]);
-      } else if (xr < rightEndW_) {
+        storeu(out + xr, winner);
+      } else {
         alignas(32) std::int16_t lanes[kLanes];
-        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), winner[v]);
+        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), winner);
         std::copy_n(lanes, rightEndW_ - xr, out + xr);
       }
     }
-    return xr0 + kVectors * kLanes;
   }
 
   const ConstImageView& left_;
