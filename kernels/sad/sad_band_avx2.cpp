@@ -212,7 +212,9 @@ class BandMatcher {
     costStride_ = front_ + std::max(rightEnd_, 0) + 5 * kLanes;
     costs_.assign(static_cast<std::size_t>(kLanes * groups_ + 2) * costStride_ + kLanes, kNoCost);
     zeros_.assign(static_cast<std::size_t>(width_), 0);
-    textureColumns_.assign(static_cast<std::size_t>(x0_ + r_), 0);
+    textureColumns_.assign(static_cast<std::size_t>(x0_ + r_ + 8), 0);
+    for (int k = 0; k < count_; ++k)
+      laneK_.insert(laneK_.end(), kLanes, static_cast<std::int16_t>(k));
     textureSums_.assign(static_cast<std::size_t>(x0_ - bandX0_ + kLanes), 0);
   }
 
@@ -237,6 +239,8 @@ class BandMatcher {
     return const_cast<std::uint16_t*>(costs_.data()) +
            static_cast<std::ptrdiff_t>(d - dLo_ + 1) * costStride_ + front_;
   }
+  // 16 lanes of k (laneK_).
+  HOROPTER_AVX2_TARGET __m256i laneK(int k) const { return loadu(laneK_.data() + kLanes * k); }
   HOROPTER_AVX2_TARGET int guardDisparity(int n) const { return minD_ - (n + 1) * guardStep_; }
   // The right pixels costed at d end where the left pixel reaches x0 when
   // the region's least costs are known (triangle_).
@@ -351,14 +355,13 @@ class BandMatcher {
     const __m256i one = _mm256_set1_epi16(1);
     const __m256i iota = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     if (useTexture_) {
-      // Window sums of the texture, per band pixel.
-      int sum = 0;
-      for (int i = -r_; i < r_; ++i)
-        sum += textureColumns_[bandX0_ + i];
-      for (int x = bandX0_; x < x0_; ++x) {
-        sum += textureColumns_[x + r_];
-        textureSums_[x - bandX0_] = sum;
-        sum -= textureColumns_[x - r_];
+      // Window sums of the texture, per band pixel, 8 at a time.
+      for (int x = bandX0_; x < x0_; x += 8) {
+        const int* column = textureColumns_.data() + x;
+        __m256i sum = loadu(column - r_);
+        for (int i = -r_ + 1; i <= r_; ++i)
+          sum = _mm256_add_epi32(sum, loadu(column + i));
+        storeu(textureSums_.data() + (x - bandX0_), sum);
       }
     }
     for (int xv = bandX0_; xv < x0_; xv += kLanes) {
@@ -366,14 +369,12 @@ class BandMatcher {
       const int kEnd = std::min(count_, xv + kLanes - r_ - minD_);
       // The least cost, in decreasing k with <= (the smallest k on ties).
       __m256i m = _mm256_set1_epi16(-1), b = _mm256_setzero_si256();
-      __m256i kv = _mm256_set1_epi16(static_cast<std::int16_t>(kEnd - 1));
 #pragma GCC unroll 4
       for (int k = kEnd - 1; k >= 0; --k) {
         const int d = minD_ + k;
         const __m256i c = loadu(costRow(d) + xv - d);
         m = _mm256_min_epu16(m, c);
-        b = _mm256_blendv_epi8(b, kv, _mm256_cmpeq_epi16(m, c));
-        kv = _mm256_sub_epi16(kv, one);
+        b = _mm256_blendv_epi8(b, laneK(k), _mm256_cmpeq_epi16(m, c));
       }
       const __m256i lim = ratio > 0 || guards_ > 0 ? uniquenessLimits(m, ratio) : m;
       const __m256i xs = _mm256_add_epi16(iota, _mm256_set1_epi16(static_cast<std::int16_t>(xv)));
@@ -489,22 +490,20 @@ class BandMatcher {
   // only where every entry is one, and there the pixel has no winner.
   HOROPTER_AVX2_TARGET void decideRight(int y) {
     std::int16_t* out = winnerRight_.row<std::int16_t>(y);
-    const __m256i one = _mm256_set1_epi16(1);
     const __m256i all = _mm256_set1_epi16(-1);
     const __m256i noWinner = _mm256_set1_epi16(static_cast<std::int16_t>(minD_ - 1));
     for (int xr = 0; xr < rightEndW_; xr += kLanes) {
       // (triangle_: rows above x0 - 1 - xr hold no cost of these pixels)
       const int top = triangle_ ? std::min(maxD_, x0_ - 1 - xr) : maxD_;
       __m256i least = all, winner = all;
-      __m256i dv = _mm256_set1_epi16(static_cast<std::int16_t>(top));
       const std::uint16_t* row = costRow(top) + xr;
 #pragma GCC unroll 4
       for (int d = top; d >= minD_; --d, row -= costStride_) {
         const __m256i c = loadu(row);
         least = _mm256_min_epu16(least, c);
-        winner = _mm256_blendv_epi8(winner, dv, _mm256_cmpeq_epi16(least, c));
-        dv = _mm256_sub_epi16(dv, one);
+        winner = _mm256_blendv_epi8(winner, laneK(d - minD_), _mm256_cmpeq_epi16(least, c));
       }
+      winner = _mm256_add_epi16(winner, _mm256_set1_epi16(static_cast<std::int16_t>(minD_)));
       const __m256i none = _mm256_cmpeq_epi16(least, all);
       if (triangle_) {
         // The band's winner where it has one and its cost is <= the
@@ -583,6 +582,7 @@ class BandMatcher {
   std::vector<std::uint16_t> costs_;  // [d - dLo + 1][front + xr]
   std::vector<std::uint8_t> zeros_;
   std::vector<int> textureColumns_;  // [x]: texture sums over the window's rows
+  std::vector<std::int16_t> laneK_;  // [k][16] = k
   std::vector<int> textureSums_;     // [x - bandX0]: window sums
 };
 
