@@ -296,35 +296,42 @@ class BandMatcher {
       const std::uint16_t* const rp = rightPairs_.data();
       std::int16_t* const col =
           columnSums_.data() + static_cast<std::ptrdiff_t>(g) * columnStride_ + pad_ * kLanes;
-      const auto update = [&](int c) HOROPTER_AVX2_TARGET {
-        const __m256i l = loadu(lp + c);
-        const __m256i rb = _mm256_set1_epi16(static_cast<std::int16_t>(rp[c]));
+      // Column c's update, from pointers at c (lp + c, rp + c, col + 16c):
+      // returns its new column sum.
+      const auto update = [&](const std::uint16_t* l, const std::uint16_t* rr,
+                              std::int16_t* p) HOROPTER_AVX2_TARGET {
+        const __m256i lv = loadu(l);
+        const __m256i rb = _mm256_set1_epi16(static_cast<std::int16_t>(*rr));
         __m256i ad;
         if constexpr (kNarrow)
-          ad = _mm256_abs_epi8(_mm256_sub_epi8(l, rb));
+          ad = _mm256_abs_epi8(_mm256_sub_epi8(lv, rb));
         else
-          ad = _mm256_or_si256(_mm256_subs_epu8(l, rb), _mm256_subs_epu8(rb, l));
-        std::int16_t* p = col + c * kLanes;
+          ad = _mm256_or_si256(_mm256_subs_epu8(lv, rb), _mm256_subs_epu8(rb, lv));
         const __m256i v = _mm256_add_epi16(loadu(p), _mm256_maddubs_epi16(ad, weights));
         storeu(p, v);
         return v;
       };
+      const std::uint16_t* l = lp + c0;
+      const std::uint16_t* rr = rp + c0;
+      std::int16_t* p = col + static_cast<std::ptrdiff_t>(c0) * kLanes;
       if constexpr (!kCosts) {
-        for (int c = c0; c < c1; ++c)
-          update(c);
+        for (int c = c0; c < c1; ++c, ++l, ++rr, p += kLanes)
+          update(l, rr, p);
       } else {
         __m256i sum = _mm256_setzero_si256();
-        for (int c = c0; c < c0 + 2 * r; ++c)
-          sum = _mm256_add_epi16(sum, update(c));
+        for (int c = c0; c < c0 + 2 * r; ++c, ++l, ++rr, p += kLanes)
+          sum = _mm256_add_epi16(sum, update(l, rr, p));
+        const std::ptrdiff_t back = static_cast<std::ptrdiff_t>(side) * kLanes;
         const int* const maskIndex = maskIndex_.data() + chunkBase_[g];
         std::uint16_t* row = costRow(dMin) + xrStart_[g];
-        for (int chunk = 0; chunk < chunks; ++chunk, row += kLanes) {
+        for (int chunk = 0; chunk < chunks;
+             ++chunk, row += kLanes, l += kLanes, rr += kLanes, p += kLanes * kLanes) {
           __m256i w[kLanes], t[kLanes];
-          const int cc = c0 + 2 * r + kLanes * chunk;
+          const std::int16_t* leaving = p - back;  // column c - 2r - 1
 #pragma GCC unroll 16
           for (int j = 0; j < kLanes; ++j) {
-            sum = _mm256_sub_epi16(_mm256_add_epi16(sum, update(cc + j)),
-                                   loadu(col + (cc + j - side) * kLanes));
+            sum = _mm256_sub_epi16(_mm256_add_epi16(sum, update(l + j, rr + j, p + kLanes * j)),
+                                   loadu(leaving + kLanes * j));
             w[j] = sum;
           }
           transpose16(w, t);
@@ -508,9 +515,14 @@ class BandMatcher {
       if (triangle_) {
         // The band's winner where it has one and its cost is <= the
         // region's least (its d are the smaller); else the region's.
-        alignas(32) std::int16_t lanes[kLanes] = {};
-        std::copy_n(out + xr, std::min(rightEndW_ - xr, kLanes), lanes);
-        const __m256i region = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes));
+        __m256i region;
+        if (xr + kLanes <= rightEndW_) {
+          region = loadu(out + xr);
+        } else {
+          alignas(32) std::int16_t lanes[kLanes] = {};
+          std::copy_n(out + xr, rightEndW_ - xr, lanes);
+          region = _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes));
+        }
         const __m256i regionLeast =
             loadu(regionLeast_.least + (y - y0_) * regionLeast_.stride + xr);
         const __m256i wins = _mm256_andnot_si256(
