@@ -97,6 +97,14 @@ constexpr CommandOption kOptions[] = {
      .help = "the front end's search range, a multiple of 16 (96: down to 0.7 m; nearer hands "
              "have no disparity, so no zone; a wider range also widens the band on the left "
              "the right view cannot match)"},
+    {.kind = OptionKind::Integer,
+     .flag = "--left-band",
+     .value = "N",
+     .min = 0,
+     .max = 1024,
+     .fallback = "0",
+     .help = "match that band's columns over the disparities that fit there, where at least N "
+             "do (0: off; the front end's --left-band)"},
     {.kind = OptionKind::Switch,
      .flag = "--frame-hands",
      .help = "head control pans to frame the head and tracked hands, not only the face (off "
@@ -259,6 +267,7 @@ int runEvalTracking(Args& args) {
   const std::string formula = opts.text("--head-formula");
   base.head.formula = formula == "paper" ? PanTiltFormula::Paper : PanTiltFormula::Atan2;
   base.stereo.numDisparities = static_cast<int>(opts.integer("--num-disparities"));
+  base.stereo.leftBand = static_cast<int>(opts.integer("--left-band"));
   if (opts.on("--frame-hands")) base.head.frameHands = true;
   if (opts.on("--no-follow-head-turns")) base.followHeadTurns = false;
   if (opts.on("--no-depth-face-sizes")) base.detector.depthFaceSizes = false;
@@ -273,6 +282,8 @@ int runEvalTracking(Args& args) {
   if (!stills.empty()) asUsageError([&] { eval::requireTuningSeeds(seedUse, "--stills"); });
   if (base.stereo.numDisparities % 16 != 0)
     throw UsageError("--num-disparities must be a positive multiple of 16");
+  if (base.stereo.leftBand > base.stereo.numDisparities)
+    throw UsageError("--left-band must be within 0..--num-disparities");
   if (requireBetter && scope != "both")
     throw UsageError("--require-region-better needs --scope both");
   requireBackend(base.backend);

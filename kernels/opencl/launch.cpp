@@ -85,6 +85,7 @@ Kernels::Kernels(Device& device)
       sad(createKernel(device, "sad_match")),
       sadCosts(createKernel(device, "sad_costs")),
       sadDecide(createKernel(device, "sad_decide")),
+      sadBand(createKernel(device, "sad_band")),
       lrCheck(createKernel(device, "lr_check")),
       median(createKernel(device, "median_filter")),
       mask(createKernel(device, "horopter_mask")),
@@ -303,6 +304,53 @@ void enqueueMatchTiled(cl_command_queue q, const Kernels& kernels, const DeviceD
   }
 }
 
+// The left band (sad_band.cl), after the region's kernels over the same
+// rows: scalar::matchLeftBand's work on the device buffers. Nothing where
+// there is no band (leftBand 0, or the region empty or without a row here).
+void enqueueMatchLeftBand(cl_command_queue q, cl_kernel k, const DeviceDesc& device,
+                          cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
+                          int height, const StereoParams& params, const BelowRangeGuard& guard,
+                          RowRange rows, cl_mem disparity, cl_mem winnerRight,
+                          SadBandScratch& scratch, const EventSink& events) {
+  const MatchRegion region = matchRegion(width, height, params);
+  const int yA = std::max(region.y0, rows.begin);
+  const int yB = std::min(region.y1, rows.end);
+  if (region.empty() || region.bandX0 >= region.x0 || yA >= yB) return;
+  const int radius = params.blockSize / 2;
+  const int numD = params.numDisparities;
+  // The columns matchLeftBand costs, and the right winners it writes.
+  const scalar::ColumnWindow window = scalar::leftBandWindow(region, params, guard);
+  const int costedEnd = std::min(region.x1, window.costedEnd);
+  const int rightEnd = std::clamp(window.rightEnd, 0, width);
+  const int count = yB - yA;
+  // Strips of rows as the strip matcher's: each pays for its first window.
+  const int wanted = static_cast<int>(device.computeUnits) * (device.gpu ? 16 : 2);
+  const int strips = std::clamp(wanted, 1, count);
+  const int stripRows = (count + strips - 1) / strips;
+  const auto used = static_cast<size_t>((count + stripRows - 1) / stripRows);
+  const auto pixels = static_cast<size_t>(costedEnd - region.bandX0);
+  const size_t columns = pixels + 2 * static_cast<size_t>(radius);
+  const auto disparities = static_cast<size_t>(numD);
+  const auto guards = static_cast<size_t>(guardCount(params, guard));
+  const auto w = static_cast<size_t>(width);
+  cl_mem colsum = scratch.colsum.get(context, used * columns * disparities * 4);
+  cl_mem colTex = scratch.colTex.get(context, used * columns * 4);
+  cl_mem costs = scratch.costs.get(context, used * pixels * disparities * 4);
+  cl_mem rightCost = scratch.rightCost.get(context, used * w * 4);
+  cl_mem rightD = scratch.rightD.get(context, used * w * 4);
+  cl_mem guardColumns = scratch.guardColumns.get(context, used * columns * guards * 4);
+  cl_mem guardCosts = scratch.guardCosts.get(context, used * pixels * guards * 4);
+  setArgs(k, left, right, texture, width, width, params.minDisparity, numD, radius,
+          params.textureThreshold, params.uniquenessRatio, region.bandX0, region.x0, costedEnd,
+          rightEnd, yA, yB, stripRows, disparity, winnerRight, width, colsum, colTex, costs,
+          rightCost, rightD, guard.step, static_cast<int>(guards), guardColumns, guardCosts);
+  const size_t global = used;
+  const size_t local = 1;
+  check(clEnqueueNDRangeKernel(q, k, 1, nullptr, &global, &local, 0, nullptr,
+                               eventFor(events, "match left band")),
+        "running the matcher's left band");
+}
+
 }  // namespace
 
 void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
@@ -318,6 +366,8 @@ void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& 
     enqueueMatchStrip(q, kernels.sad.get(), device, context, left, right, texture, width, height,
                       params, guard, rows, disparity, winnerRight, scratch,
                       eventFor(events, "match"));
+  enqueueMatchLeftBand(q, kernels.sadBand.get(), device, context, left, right, texture, width,
+                       height, params, guard, rows, disparity, winnerRight, scratch.band, events);
 }
 
 void setTiledBandBytes(std::size_t bytes) {

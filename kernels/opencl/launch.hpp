@@ -54,7 +54,8 @@ class Events {
 // The kernels of a device's program; one set per thread that enqueues.
 struct Kernels {
   explicit Kernels(Device& device);
-  KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, lrCheck, median, mask;
+  KernelHandle prefilter, prefilterNormalized, sad, sadCosts, sadDecide, sadBand, lrCheck, median,
+      mask;
   // sad_costs of a tuning variant's program (sadCosts for the default's
   // options), created on first use.
   cl_kernel costsFor(const TiledVariant& variant) const;
@@ -99,13 +100,20 @@ SadShape sadShape(const DeviceDesc& device);
 // tiledVariant() (tiled_variant.hpp), for tuning sweeps.
 const char* sadShapeName(SadShape shape);
 
-// Scratch of the matcher: per strip of rows (Strip), the cost volume (Tiled).
+// Scratch of the matcher's left band (sad_band.cl), per strip of rows.
+struct SadBandScratch {
+  Buffer colsum, colTex, costs, rightCost, rightD, guardColumns, guardCosts;
+};
+// Scratch of the matcher: per strip of rows (Strip), the cost volume (Tiled),
+// and the left band's.
 struct SadScratch {
   Buffer colsum, colTex, rightCost, rightD, guardColumns, costs;
+  SadBandScratch band;
 };
 // Events: "match" (Strip), or "match costs" and "match decide" (Tiled; once
 // per band of rows when the cost volume of all the rows would pass the
-// device's allocation limit).
+// device's allocation limit); then "match left band" where params.leftBand
+// leaves a band (sad_band.cl, after either shape).
 void enqueueMatch(cl_command_queue q, const Kernels& kernels, const DeviceDesc& device,
                   cl_context context, cl_mem left, cl_mem right, cl_mem texture, int width,
                   int height, const StereoParams& params, const BelowRangeGuard& guard,

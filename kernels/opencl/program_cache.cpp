@@ -38,8 +38,8 @@ std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h = 146959
 }
 
 std::vector<const char*> allSources() {
-  return {kInjectedFailure, sources::prefilter, sources::sad,         sources::sadTiled,
-          sources::lrCheck, sources::median,    sources::horopterMask};
+  return {kInjectedFailure, sources::prefilter, sources::sad,    sources::sadTiled,
+          sources::sadBand, sources::lrCheck,   sources::median, sources::horopterMask};
 }
 
 std::string hex(std::uint64_t v) {

@@ -28,6 +28,12 @@ struct ColumnWindow {
   int rightEnd = 1 << 30;   // right winners written: xr in [0, rightEnd), from the costed pixels
 };
 
+// matchLeftBand's window (sad_scalar.cpp): the band's left pixels, the right
+// winners that have a candidate in the band, and the columns costed for
+// them. Shared with the device backends' band kernels.
+ColumnWindow leftBandWindow(const MatchRegion& region, const StereoParams& params,
+                            const BelowRangeGuard& guard);
+
 // The reference over the window's columns, on rows already filled with the
 // invalid marker and "no winner" (matchBlocks fills them, then calls it
 // with the whole window).

@@ -328,6 +328,12 @@ void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
                    const ImageView& winnerRight, RowRange rows) {
   const MatchRegion region = matchRegion(left.width, left.height, params);
   if (region.empty() || region.bandX0 == region.x0) return;
+  matchColumns(left, right, texture, params, guard, disparity, winnerRight, rows,
+               leftBandWindow(region, params, guard));
+}
+
+ColumnWindow leftBandWindow(const MatchRegion& region, const StereoParams& params,
+                            const BelowRangeGuard& guard) {
   // A band pixel x < x0 is a candidate of the right pixels x - d, d down to
   // the lowest disparity checked (minDisparity, or the guard's lowest g);
   // their other candidates lie left of that right end + maxD.
@@ -336,7 +342,7 @@ void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
   window.rightEnd = region.x0 - lowest;
   window.costedEnd = window.rightEnd + params.minDisparity + params.numDisparities - 1;
   window.leftEnd = region.x0;
-  matchColumns(left, right, texture, params, guard, disparity, winnerRight, rows, window);
+  return window;
 }
 
 }  // namespace scalar

@@ -742,6 +742,17 @@ void conformMatchBlocksLeftBand(const Backend& backend) {
     p.leftBand = 4;
     add(80, 22, p, {}, 5);
   }
+  for (int w : {25, 26, 27}) {
+    // The guard below zero at the smallest widths: the right winners the band
+    // rewrites (up to x0 - the lowest checked disparity) reach past the
+    // costed columns, which x1 clips; a backend's scratch must not carry
+    // over from the row before.
+    StereoParams p;
+    p.numDisparities = 16;
+    p.blockSize = 9;
+    p.leftBand = 2;
+    add(w, 14, p, {2, -10}, 3);
+  }
   long long bandValid = 0, rightChanged = 0;
   for (const BandCase& c : cases) {
     const int w = c.w, h = c.h;

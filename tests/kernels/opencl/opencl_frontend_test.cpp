@@ -54,6 +54,9 @@ std::vector<Setting> settings() {
   normalized.preFilterType = PreFilterType::NormalizedResponse;
   normalized.preFilterSize = 13;
   out.push_back({"StereoBM's defaults, normalized response", normalized, off});
+  StereoParams band = noSpeckles;  // sad_band.cl after the region's kernels, on the device
+  band.leftBand = 16;
+  out.push_back({"left band of 16, no speckles", band, median3});
   return out;
 }
 
@@ -169,6 +172,28 @@ TEST(OpenClFrontend, ProfileNamesEveryStage) {
       want.insert(want.end(), {"match costs", "match decide"});
     for (const std::string& stage : want)
       EXPECT_NE(std::find(stages.begin(), stages.end(), stage), stages.end()) << stage;
+  }
+}
+
+// The left band's kernel (sad_band.cl) runs after either shape's only where
+// params.leftBand leaves a band: without one the queue is as before.
+TEST(OpenClFrontend, LeftBandKernelRunsOnlyWithABand) {
+  HOROPTER_REQUIRE_OPENCL_DEVICE();
+  const std::vector<StereoPair> pairs = frames(1);
+  for (const char* shape : kSadShapes) {
+    const ScopedEnv sad("HOROPTER_OPENCL_SAD", shape);
+    for (const int band : {0, 1, 16}) {
+      SCOPED_TRACE(std::string(shape) + ", leftBand " + std::to_string(band));
+      StereoParams p;
+      p.leftBand = band;
+      OpenClFrontend frontend(p, MedianParams{}, "opencl", 1);
+      frontend.computeDisparity(pairs[0].left.view(), pairs[0].right.view());
+      std::vector<std::string> stages;
+      for (const OpenClStageTime& t : frontend.profile())
+        stages.push_back(t.stage);
+      EXPECT_EQ(std::count(stages.begin(), stages.end(), std::string("match left band")),
+                band > 0 ? 1 : 0);
+    }
   }
 }
 
