@@ -132,7 +132,8 @@ class BandMatcher {
                                    const ConstImageView& texture, const StereoParams& params,
                                    const BelowRangeGuard& guard, const ImageView& disparity,
                                    const ImageView& winnerRight, const MatchRegion& region,
-                                   bool narrow, const RegionLeast& regionLeast)
+                                   const scalar::ColumnWindow& window, bool narrow,
+                                   const RegionLeast& regionLeast)
       : left_(left),
         right_(right),
         texture_(texture),
@@ -148,9 +149,9 @@ class BandMatcher {
         guardStep_(guard.step),
         x0_(region.x0),
         bandX0_(region.bandX0),
-        // The window of scalar::matchLeftBand (see its comment).
-        rightEnd_(region.x0 - (minD_ - guards_ * guardStep_)),
-        costedEnd_(std::min(region.x1, rightEnd_ + maxD_)),
+        // scalar::leftBandWindow, as matchLeftBand costs it.
+        rightEnd_(window.rightEnd),
+        costedEnd_(std::min(region.x1, window.costedEnd)),
         rightEndW_(std::clamp(rightEnd_, 0, width_)),
         dLo_(minD_ - guards_ * guardStep_),
         groups_((maxD_ - dLo_ + kLanes) / kLanes),
@@ -637,8 +638,8 @@ HOROPTER_AVX2_TARGET void matchLeftBand(const ConstImageView& left, const ConstI
     return;
   }
   const bool narrow = costBound <= 127 * side * side;
-  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, narrow,
-                      regionLeast);
+  BandMatcher matcher(left, right, texture, params, guard, disparity, winnerRight, region,
+                      scalar::leftBandWindow(region, params, guard), narrow, regionLeast);
   matcher.run(region.y0, region.y1);
 }
 
