@@ -25,14 +25,22 @@
 //   row d at x - d (shifted loads). Entries with xr < r are never written
 //   and keep "no cost" (65535, above every real cost, costs being below it
 //   by the bound checked first), which ends each band pixel's own range
-//   (top(x) = x - r). Right winners mask the lanes whose left pixel lies
-//   outside [bandX0, costedEnd) (the first and last 15 rows of a vector) and,
-//   for the guard's rows, whose right window leaves the image. Winners:
-//   a running minimum with a strict < in increasing d (the smallest d on
-//   ties). Left pixels: the same minimum, a second pass counting the costs
-//   within the uniqueness limit (the winner and those of its neighbours
-//   within it, for a valid pixel), the guard's least, then per pixel the
-//   texture sum, the tests and the integer sub-pixel fit, as decidePixel.
+//   (top(x) = x - r). The sweep ORs precomputed masks into its edge chunks
+//   so that every entry no pixel may weigh is "no cost" too (left pixel
+//   outside [bandX0, costedEnd), the guard's right window past the image):
+//   the decisions' loops carry no lane masks. Winners: running minima in
+//   decreasing d with <= (the smallest d on ties; "no cost" wins only where
+//   every entry is one). Left pixels: the same minimum, a second pass
+//   counting the costs within the uniqueness limit (the winner and those of
+//   its neighbours within it, for a valid pixel), the guard's least, then
+//   texture, the tests and the integer sub-pixel fit of decidePixel, 16
+//   pixels a vector (neighbour costs by gathers).
+//
+//   Triangle (RegionLeast, no guard): when avx2::matchBlocks's region pass
+//   left the least cost of each right pixel over its own candidates, only
+//   the candidates with x < x0 are costed (half the parallelogram), and a
+//   right pixel's winner among them replaces the region's where its cost is
+//   <= the region's least (its d are the smaller, so it wins ties).
 //
 //   Costs are 16-bit: the caller's bound (maxDiff * blockSize^2) must be
 //   below 65535, else the scalar reference runs.
@@ -208,8 +216,7 @@ class BandMatcher {
     // Cost rows: d from dLo - 1 (a row of "no cost" below) to dLo + 16 *
     // groups; entries xr from -front (left reads reach x - maxD).
     front_ = (count_ + 2 * kLanes) & ~(kLanes - 1);
-    // (right winners read 4 vectors from below rightEnd; gathers 2 bytes past
-    // an entry)
+    // (reads reach 16 entries past rightEnd; gathers 2 bytes past one)
     costStride_ = front_ + std::max(rightEnd_, 0) + 5 * kLanes;
     costs_.assign(static_cast<std::size_t>(kLanes * groups_ + 2) * costStride_ + kLanes, kNoCost);
     zeros_.assign(static_cast<std::size_t>(width_), 0);
