@@ -60,7 +60,7 @@ void runPeer(benchmark::State& state, const MatchSetting& setting, int threads) 
 }  // namespace
 
 void registerDisparityRows() {
-  for (const MatchSetting& setting : matchSettings(/*withTarget=*/true)) {
+  const auto registerOurs = [](const MatchSetting& setting) {
     for (const Backend* backend : availableBackends()) {
       for (const int threads : kThreadCounts) {
         const std::string name = "disparity/" + backend->name + "/" + sizeTag(setting.size) + "/" +
@@ -72,6 +72,12 @@ void registerDisparityRows() {
         if (threads > 1) row->UseRealTime();
       }
     }
+  };
+  // The left band's rows: ours only (cv::StereoBM has no band).
+  for (const MatchSetting& setting : bandSettings())
+    registerOurs(setting);
+  for (const MatchSetting& setting : matchSettings(/*withTarget=*/true)) {
+    registerOurs(setting);
     for (const int threads : kThreadCounts) {
       const std::string name =
           "opencv_stereobm/" + sizeTag(setting.size) + "/" + matchTag(setting, threads);

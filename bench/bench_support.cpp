@@ -23,6 +23,13 @@ std::vector<MatchSetting> matchSettings(bool withTarget) {
   return settings;
 }
 
+std::vector<MatchSetting> bandSettings() {
+  MatchSetting vga{{640, 480}, 64, kBlockSize};
+  MatchSetting target = kTarget;
+  vga.leftBand = target.leftBand = 16;
+  return {vga, target};
+}
+
 std::vector<const Backend*> availableBackends() {
   std::vector<const Backend*> backends;
   for (const Backend* backend : registeredBackends()) {
@@ -47,6 +54,10 @@ std::string matchTag(const MatchSetting& setting, int threads) {
   if (setting.preFilter == PreFilterType::NormalizedResponse) tag += "/norm";
   tag += "/t";
   tag += std::to_string(threads);
+  if (setting.leftBand > 0) {
+    tag += "/band";
+    tag += std::to_string(setting.leftBand);
+  }
   return tag;
 }
 
@@ -55,6 +66,7 @@ StereoParams frontendParams(const MatchSetting& setting) {
   params.numDisparities = setting.numDisparities;
   params.blockSize = setting.blockSize;
   params.preFilterType = setting.preFilter;
+  params.leftBand = setting.leftBand;
   return params;
 }
 

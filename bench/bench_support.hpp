@@ -24,6 +24,7 @@ struct MatchSetting {
   int numDisparities = 0;
   int blockSize = 0;
   PreFilterType preFilter = PreFilterType::XSobel;  // rows of another are tagged "/norm"
+  int leftBand = 0;  // StereoParams::leftBand; rows with a band are tagged "/band<m>" last
 };
 
 inline constexpr FrameSize kSizes[] = {{320, 240}, {640, 480}, {1280, 720}};
@@ -38,13 +39,16 @@ inline constexpr int kThreadCounts[] = {1, 2};
 // `withTarget`, also the issue-3 target 1280x720/d128/w15 and
 // 640x480/d64/w9 with StereoBM's normalized-response prefilter.
 std::vector<MatchSetting> matchSettings(bool withTarget);
+// The left band's settings (disparity/ rows only): 640x480 d64 w9 and the
+// target, band 16.
+std::vector<MatchSetting> bandSettings();
 
 // The registered backends available on this machine, so that a new backend
 // gets its rows without touching the benches.
 std::vector<const Backend*> availableBackends();
 
 // Row-name pieces: "640x480" and "d64/w9/t1" ("d64/w9/norm/t1" for the
-// normalized-response prefilter).
+// normalized-response prefilter, "d64/w9/t1/band16" with the left band).
 std::string sizeTag(FrameSize size);
 std::string matchTag(const MatchSetting& setting, int threads);
 

@@ -2,6 +2,9 @@
 // and the geometry every backend shares.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+
 #include "horopter/core/image.hpp"
 #include "horopter/kernels/backend.hpp"
 #include "horopter/kernels/kernels.hpp"
@@ -62,6 +65,26 @@ void matchBlocks(const ConstImageView& left, const ConstImageView& right,
                  const ConstImageView& texture, const StereoParams& params,
                  const BelowRangeGuard& guard, const ImageView& disparity,
                  const ImageView& winnerRight, RowRange rows);
+
+// What avx2::matchBlocks's region pass leaves for the band (no guard):
+// least[(y - y0) * stride + xr], y0 the first row of the call's region,
+// the least cost over the region's candidates of right pixel xr < x0 -
+// minDisparity (65535: none); winnerRight holds their winners.
+struct RegionLeast {
+  const std::uint16_t* least = nullptr;  // null: not known
+  std::ptrdiff_t stride = 0;
+};
+
+// scalar::matchLeftBand, bit-exact (kernels/sad/sad_band_avx2.cpp).
+// costBound: a bound on every window cost (maxDiff * blockSize^2) where
+// the caller knows one, else -1 (derived here); 65535 or more runs the
+// scalar reference. With regionLeast (and no guard), only the band's own
+// candidates are costed.
+void matchLeftBand(const ConstImageView& left, const ConstImageView& right,
+                   const ConstImageView& texture, const StereoParams& params,
+                   const BelowRangeGuard& guard, const ImageView& disparity,
+                   const ImageView& winnerRight, RowRange rows, std::int64_t costBound = -1,
+                   const RegionLeast& regionLeast = {});
 }  // namespace avx2
 
 }  // namespace horopter

@@ -100,6 +100,7 @@
 #include <new>
 #include <numeric>
 #include <type_traits>
+#include <vector>
 
 #include "common/cpu_features.hpp"
 #include "sad/sad.hpp"
@@ -536,6 +537,16 @@ class Matcher {
     }
   }
 
+  // Asks run() to keep, per row y and right pixel xr in [0, end), the least
+  // cost over the region's candidates (65535: none) at least[(y - y0) *
+  // stride + xr], for the left band's pass (stride >= end + kChunk).
+  void exportRightLeast(std::uint16_t* least, std::ptrdiff_t stride, int end, int y0) {
+    rightLeast_ = least;
+    rightLeastStride_ = stride;
+    rightLeastEnd_ = end;
+    rightLeastY0_ = y0;
+  }
+
   HOROPTER_AVX2_TARGET void run(int y0, int y1) {
     const bool separateGuard = guards_ > 0 && guardGroups_ == 0;
     for (int j = y0 - r_; j <= y0 + r_; ++j) {
@@ -866,6 +877,8 @@ class Matcher {
   // all in; the tile's costs are still in cache when the decisions read them.
   template <bool kSlide>
   HOROPTER_AVX2_TARGET void rowPass(int y) {
+    if (rightLeast_ != nullptr)
+      rightLeastRow_ = rightLeast_ + (y - rightLeastY0_) * rightLeastStride_;
     const auto* lIn = left_.row<std::uint8_t>(kSlide ? y + r_ : y);
     const auto* lOut = left_.row<std::uint8_t>(kSlide ? y - r_ - 1 : y);
     const int pairs = sweepGroups_ / 2;
@@ -1378,6 +1391,22 @@ class Matcher {
     __m256i best[kBlocks], d[kBlocks];
     leastKeys<kShift, kBlocks>(costs(0) + (xr0 + minD_ - x0_), rowLen_ + 1, count_,
                                disparityOf_.get(), best, d);
+    if (rightLeastRow_ != nullptr && xr0 < rightLeastEnd_) {
+      // The least costs for the left band (exportRightLeast): "no cost" and
+      // right pixels past xrHigh (past the costs' rows) as 65535.
+      const __m256i bias16 = _mm256_set1_epi16(static_cast<std::int16_t>(kBias));
+      const __m256i noCost = _mm256_set1_epi16(kNoCost);
+      const __m256i high = _mm256_set1_epi16(static_cast<std::int16_t>(xrHigh - xr0));
+      const __m256i lane = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+      for (int n = 0; n < kBlocks; ++n) {
+        const __m256i past = _mm256_cmpgt_epi16(
+            _mm256_add_epi16(lane, _mm256_set1_epi16(static_cast<std::int16_t>(n * kLanes))), high);
+        const __m256i least =
+            _mm256_or_si256(_mm256_srli_epi16(_mm256_xor_si256(best[n], bias16), kShift),
+                            _mm256_or_si256(_mm256_cmpeq_epi16(best[n], noCost), past));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(rightLeastRow_ + xr0 + n * kLanes), least);
+      }
+    }
     const __m256i lowBits = _mm256_set1_epi16((1 << kShift) - 1);
     const __m256i groups = _mm256_set1_epi16(static_cast<std::int16_t>(count_ >> kShift));
     for (int n = 0; n < kBlocks; ++n)
@@ -1493,6 +1522,11 @@ class Matcher {
   AlignedArray<std::int16_t> guardDisparityOf_;  // folded: [k][16] = sweepMin + k
   std::int16_t* const laneZero_;                 // costs(0)
   int guardNoCostLeast_ = 1 << 30;               // least guardNoCostFrom over the folded lanes
+  // exportRightLeast's array (null: off) and the current row's part of it.
+  std::uint16_t* rightLeast_ = nullptr;
+  std::ptrdiff_t rightLeastStride_ = 0;
+  int rightLeastEnd_ = 0, rightLeastY0_ = 0;
+  std::uint16_t* rightLeastRow_ = nullptr;
 };
 
 }  // namespace
@@ -1546,10 +1580,23 @@ HOROPTER_AVX2_TARGET void matchBlocks(const ConstImageView& left, const ConstIma
   const bool smallProducts = maxDiff * side * side * params.uniquenessRatio < (1 << 23);
   Matcher matcher(left, right, texture, params, guard, disparity, winnerRight, region, shift,
                   maxDiff <= 127, smallProducts, static_cast<int>(maxDiff * side * side));
+  // The left band (params.leftBand): its own sweep over the disparities that
+  // fit there (sad_band_avx2.cpp), under the same cost bound. Without the
+  // guard, the region's least cost per right pixel left of x0 - minD lets it
+  // cost only the band's own candidates (RegionLeast).
+  std::vector<std::uint16_t> least;
+  RegionLeast regionLeast;
+  if (region.bandX0 < region.x0 && guardCount(params, guard) == 0) {
+    regionLeast.stride = ((region.x0 - params.minDisparity + kLanes - 1) & ~(kLanes - 1)) +
+                         4 * kLanes;  // the region writes 4 vectors at a time
+    least.assign(static_cast<std::size_t>(region.y1 - region.y0) * regionLeast.stride, 0xFFFF);
+    regionLeast.least = least.data();
+    matcher.exportRightLeast(least.data(), regionLeast.stride, region.x0 - params.minDisparity,
+                             region.y0);
+  }
   matcher.run(region.y0, region.y1);
-  // The left band (params.leftBand) is a small triangle of the work, beside
-  // the region's sweep: the reference's own loops over its columns.
-  scalar::matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows);
+  matchLeftBand(left, right, texture, params, guard, disparity, winnerRight, rows,
+                maxDiff * side * side, regionLeast);
 }
 
 }  // namespace horopter::avx2
