@@ -181,7 +181,8 @@ typedef struct horopter_run_config {
 
 /* source NULL (set one), frames 0, the camera's size, backend "auto",
  * 1 thread, 3 in flight, offline, detect "region", stereo defaults
- * (horopter_stereo_params_default), fixation and focal length 0 (defaults). */
+ * (horopter_stereo_params_default) with the run's left band (16, as
+ * `horopter run`), fixation and focal length 0 (defaults). */
 void horopter_run_config_default(horopter_run_config* config);
 
 /* What the caller sees of each finished frame, in frame order. Positions in
