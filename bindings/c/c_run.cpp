@@ -79,7 +79,7 @@ void horopter_run_config_default(horopter_run_config* config) {
   config->live = 0;
   config->detect = "region";
   horopter_stereo_params_default(&config->stereo);
-  config->stereo.left_band = horopter::PipelineConfig{}.stereo.leftBand;  // the run's own default
+  config->stereo.left_band = horopter::runStereoDefaults().leftBand;  // the run's own
   config->fixation_disparity_px = 0;
   config->focal_px = 0;
 }

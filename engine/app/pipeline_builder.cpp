@@ -13,6 +13,12 @@
 
 namespace horopter {
 
+StereoParams runStereoDefaults() {
+  StereoParams p;
+  p.leftBand = 16;
+  return p;
+}
+
 namespace {
 
 // Rectification, zone and rig: what the mask and the tracker need to know

@@ -504,7 +504,7 @@ int runPipeline(Args& args) {
     std::cout << kRunHelpStart << commandOptionsHelp(kOptions)
               << "Election of the godfather (the person the robot follows):\n"
               << optionFlagsHelp(electionOptions(), ElectionOptions{}) << "\n"
-              << stereoFlagsHelp(PipelineConfig{}.stereo, MedianParams{},
+              << stereoFlagsHelp(runStereoDefaults(), MedianParams{},
                                  "all cores with one frame in flight, all but one with more")
               << "Zone-limited matching (each frame searches only where the zone can be):\n"
               << optionFlagsHelp(zoneSearchOptions(), ZoneSearch{});

@@ -45,6 +45,12 @@ struct HOROPTER_API ZoneOptions {
                                               // the image width)
 };
 
+// The run's stereo parameters: StereoParams{} with the left band matched
+// where at least 16 disparities fit (the kernel API's default leaves those
+// columns invalid, as cv::StereoBM does): a hand near the image's left edge
+// keeps its disparity, so its zone (issue 20; kernels/README.md).
+HOROPTER_API StereoParams runStereoDefaults();
+
 // How far the pipeline goes: the whole of it, or only the front end up to a
 // stage (profiling; no detection then).
 enum class StopAfter { Everything, Rectify, Disparity, Mask };
@@ -57,15 +63,8 @@ struct HOROPTER_API PipelineConfig {
   // Schedule.
   bool live = false;  // live mode: capture never waits, stale frames are dropped
   int inFlight = 3;   // frames in flight, 1..64
-  // Front end. The left band is matched where at least 16 disparities fit
-  // (the kernel API's StereoParams{} leaves those columns invalid, as
-  // cv::StereoBM does): a hand near the image's left edge keeps its
-  // disparity, so its zone (issue 20; kernels/README.md).
-  StereoParams stereo = [] {
-    StereoParams p;
-    p.leftBand = 16;
-    return p;
-  }();
+  // Front end.
+  StereoParams stereo = runStereoDefaults();
   MedianParams median;
   std::string backend = "auto";  // scalar, avx2, opencl..., auto
   int threads = 1;               // the disparity stage's threads, 1..256
