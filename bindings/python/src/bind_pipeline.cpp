@@ -157,7 +157,7 @@ void bindPipeline(py::module_& m) {
                c.maxFrames = *frames;
                synthetic.frames = static_cast<int>(*frames);
              }
-             c.stereo = params.is_none() ? StereoParams{} : params.cast<StereoParams>();
+             c.stereo = params.is_none() ? runStereoDefaults() : params.cast<StereoParams>();
              applyPipelineKwargs(c, kwargs);
              c.median = median.is_none() ? MedianParams{} : median.cast<MedianParams>();
              c.backend = backend;
@@ -206,7 +206,9 @@ void bindPipeline(py::module_& m) {
            "synthetic scene (offline, no calib) the head control then turns the cameras "
            "(head_control=False: they stay still); "
            "movement_model (a MovementModel) then adds movement analysis (frame['movement']). "
-           "options: StereoParams fields (numDisparities=64, ...) and the tuning options of "
+           "params=None: the run's stereo defaults (StereoParams() with leftBand=16, as "
+           "`horopter run`). options: StereoParams fields (numDisparities=64, ...) and the "
+           "tuning options of "
            "horopter.tuning_options() by name (zoneSearch=1, trackDepthGatePx=..., ...). "
            "Sources: "
            "synthetic, dir:PATH, video:LEFT,RIGHT, camera:DEV,DEV, sbs:DEV (as horopter run)")
