@@ -54,6 +54,7 @@
 
 #include "common/cpu_features.hpp"
 #include "sad/sad.hpp"
+#include "sad/sad_transpose_avx2.hpp"
 
 namespace horopter::avx2 {
 
@@ -67,33 +68,6 @@ HOROPTER_AVX2_TARGET inline __m256i loadu(const void* p) {
 }
 HOROPTER_AVX2_TARGET inline void storeu(void* p, __m256i v) {
   _mm256_storeu_si256(static_cast<__m256i*>(p), v);
-}
-
-// Transposes 16 vectors of 16 lanes: t[k] lane j = v[j] lane k.
-[[gnu::always_inline]] HOROPTER_AVX2_TARGET inline void transpose16(const __m256i* v, __m256i* t) {
-  __m256i w[2][8];
-  for (int h = 0; h < 2; ++h) {
-    const __m256i* r = v + 8 * h;
-    __m256i s[8], u[8];
-    for (int m = 0; m < 4; ++m) {
-      s[2 * m] = _mm256_unpacklo_epi16(r[2 * m], r[2 * m + 1]);
-      s[2 * m + 1] = _mm256_unpackhi_epi16(r[2 * m], r[2 * m + 1]);
-    }
-    for (int m = 0; m < 2; ++m) {
-      u[4 * m] = _mm256_unpacklo_epi32(s[4 * m], s[4 * m + 2]);
-      u[4 * m + 1] = _mm256_unpackhi_epi32(s[4 * m], s[4 * m + 2]);
-      u[4 * m + 2] = _mm256_unpacklo_epi32(s[4 * m + 1], s[4 * m + 3]);
-      u[4 * m + 3] = _mm256_unpackhi_epi32(s[4 * m + 1], s[4 * m + 3]);
-    }
-    for (int m = 0; m < 4; ++m) {
-      w[h][2 * m] = _mm256_unpacklo_epi64(u[m], u[m + 4]);
-      w[h][2 * m + 1] = _mm256_unpackhi_epi64(u[m], u[m + 4]);
-    }
-  }
-  for (int c = 0; c < 8; ++c) {
-    t[c] = _mm256_permute2x128_si256(w[0][c], w[1][c], 0x20);
-    t[c + 8] = _mm256_permute2x128_si256(w[0][c], w[1][c], 0x31);
-  }
 }
 
 // Eight int32 lanes (0 <= n < 2^31) divided by 100, truncated: exact in

@@ -541,6 +541,41 @@ void conformMatchBlocks(const Backend& backend) {
   }
 }
 
+// How many pixels of two same-sized S16C1 images differ.
+long long differingPixels(const TestImage& a, const TestImage& b) {
+  long long n = 0;
+  for (int y = 0; y < a.view().height; ++y)
+    for (int x = 0; x < a.view().width; ++x)
+      n += a.view().row<std::int16_t>(y)[x] != b.view().row<std::int16_t>(y)[x];
+  return n;
+}
+
+// The backend's matchBlocks with `guard`, in every layout and in two
+// stripes of rows (as the front end's threads call it), against the
+// reference's maps; the inputs must come back untouched.
+void conformStripedMatch(const Backend& backend, const StereoPair& pair, const TestImage& texture,
+                         const StereoParams& p, const BelowRangeGuard& guard,
+                         const TestImage& refDisparity, const TestImage& refWinner) {
+  const int w = pair.left.view().width, h = pair.left.view().height;
+  for (const Layout& layout : kLayouts) {
+    SCOPED_TRACE(std::string("layout ") + layout.name);
+    const TestImage left = pair.left.clone(layout), right = pair.right.clone(layout);
+    const TestImage tex = texture.clone(layout);
+    TestImage disparity(w, h, PixelType::S16C1, layout), winner(w, h, PixelType::S16C1, layout);
+    disparity.fillBytes(0x77);
+    winner.fillBytes(0x77);
+    for (const RowRange rows : {RowRange{0, h / 3}, RowRange{h / 3, h}})
+      matchBlocks(left.view(), right.view(), tex.view(), p, guard, disparity.view(), winner.view(),
+                  backend, rows);
+    CONFORM(sameImage(refDisparity.view(), disparity.view()), "disparity");
+    CONFORM(sameImage(refWinner.view(), winner.view()), "winnerRight");
+    CONFORM(disparity.canariesIntact(), "disparity");
+    CONFORM(winner.canariesIntact(), "winnerRight");
+    CONFORM(untouched(pair.left, left, "left"), "left");
+    CONFORM(untouched(pair.right, right, "right"), "right");
+  }
+}
+
 // Matching with the guard below the range (zone-limited matching): steps
 // from 1 up to past the gap, uniqueness on and off, texture on and off,
 // raw and prefiltered inputs, checked disparities below zero (whose windows
@@ -643,32 +678,9 @@ void conformMatchBlocksGuarded(const Backend& backend) {
     TestImage plain(w, h, PixelType::S16C1), plainWinner(w, h, PixelType::S16C1);
     matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, plain.view(),
                 plainWinner.view(), scalarBackend());
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        removed +=
-            plain.view().row<std::int16_t>(y)[x] != refDisparity.view().row<std::int16_t>(y)[x];
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        rightChanged +=
-            plainWinner.view().row<std::int16_t>(y)[x] != refWinner.view().row<std::int16_t>(y)[x];
-    for (const Layout& layout : kLayouts) {
-      SCOPED_TRACE(std::string("layout ") + layout.name);
-      const TestImage left = pair.left.clone(layout), right = pair.right.clone(layout);
-      const TestImage tex = texture.clone(layout);
-      TestImage disparity(w, h, PixelType::S16C1, layout), winner(w, h, PixelType::S16C1, layout);
-      disparity.fillBytes(0x77);
-      winner.fillBytes(0x77);
-      // Two stripes of rows, as the front end's threads call it.
-      for (const RowRange rows : {RowRange{0, h / 3}, RowRange{h / 3, h}})
-        matchBlocks(left.view(), right.view(), tex.view(), c.p, c.guard, disparity.view(),
-                    winner.view(), backend, rows);
-      CONFORM(sameImage(refDisparity.view(), disparity.view()), "disparity");
-      CONFORM(sameImage(refWinner.view(), winner.view()), "winnerRight");
-      CONFORM(disparity.canariesIntact(), "disparity");
-      CONFORM(winner.canariesIntact(), "winnerRight");
-      CONFORM(untouched(pair.left, left, "left"), "left");
-      CONFORM(untouched(pair.right, right, "right"), "right");
-    }
+    removed += differingPixels(plain, refDisparity);
+    rightChanged += differingPixels(plainWinner, refWinner);
+    conformStripedMatch(backend, pair, texture, c.p, c.guard, refDisparity, refWinner);
   }
   EXPECT_GT(removed, 0) << "the guard removed no pixel in any case: the sweep tests nothing";
   EXPECT_GT(rightChanged, 0) << "the guard changed no right winner: the sweep tests nothing";
@@ -781,32 +793,9 @@ void conformMatchBlocksLeftBand(const Backend& backend) {
     TestImage plain(w, h, PixelType::S16C1), plainWinner(w, h, PixelType::S16C1);
     matchBlocks(pair.left.view(), pair.right.view(), texture.view(), noBand, c.guard, plain.view(),
                 plainWinner.view(), scalarBackend());
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        bandValid +=
-            plain.view().row<std::int16_t>(y)[x] != refDisparity.view().row<std::int16_t>(y)[x];
-        rightChanged +=
-            plainWinner.view().row<std::int16_t>(y)[x] != refWinner.view().row<std::int16_t>(y)[x];
-      }
-    }
-    for (const Layout& layout : kLayouts) {
-      SCOPED_TRACE(std::string("layout ") + layout.name);
-      const TestImage left = pair.left.clone(layout), right = pair.right.clone(layout);
-      const TestImage tex = texture.clone(layout);
-      TestImage disparity(w, h, PixelType::S16C1, layout), winner(w, h, PixelType::S16C1, layout);
-      disparity.fillBytes(0x77);
-      winner.fillBytes(0x77);
-      // Two stripes of rows, as the front end's threads call it.
-      for (const RowRange rows : {RowRange{0, h / 3}, RowRange{h / 3, h}})
-        matchBlocks(left.view(), right.view(), tex.view(), c.p, c.guard, disparity.view(),
-                    winner.view(), backend, rows);
-      CONFORM(sameImage(refDisparity.view(), disparity.view()), "disparity");
-      CONFORM(sameImage(refWinner.view(), winner.view()), "winnerRight");
-      CONFORM(disparity.canariesIntact(), "disparity");
-      CONFORM(winner.canariesIntact(), "winnerRight");
-      CONFORM(untouched(pair.left, left, "left"), "left");
-      CONFORM(untouched(pair.right, right, "right"), "right");
-    }
+    bandValid += differingPixels(plain, refDisparity);
+    rightChanged += differingPixels(plainWinner, refWinner);
+    conformStripedMatch(backend, pair, texture, c.p, c.guard, refDisparity, refWinner);
   }
   EXPECT_GT(bandValid, 0) << "the band changed no pixel in any case: the sweep tests nothing";
   EXPECT_GT(rightChanged, 0) << "the band changed no right winner: the sweep tests nothing";
