@@ -42,6 +42,8 @@ SearchRange fullRange(const StereoParams& p) {
 StereoParams withRange(StereoParams p, SearchRange range) {
   p.minDisparity = range.minDisparity;
   p.numDisparities = range.numDisparities;
+  // A band that asks for more disparities than the range has asks for all.
+  p.leftBand = std::min(p.leftBand, range.numDisparities);
   return p;
 }
 

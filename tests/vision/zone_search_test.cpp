@@ -175,6 +175,21 @@ TEST(ZoneSearch, TheGuardRemovesAFarTexturedPlaneBelowTheRange) {
   EXPECT_LT(withGuard, region / 100) << "the guard removes it";
 }
 
+// A left band wider than a frame's range would fail validation on that
+// frame (horopter run --zone-search 1 --left-band 64 did, on frame 0): the
+// range's parameters ask for at most all of its disparities.
+TEST(ZoneSearch, TheLeftBandNeverAsksForMoreThanTheRange) {
+  StereoParams full;
+  full.numDisparities = 96;
+  full.leftBand = 64;
+  const StereoParams narrow = withRange(full, {48, 32});
+  EXPECT_EQ(narrow.leftBand, 32);
+  EXPECT_NO_THROW(validate(narrow));
+  EXPECT_EQ(withRange(full, {0, 96}).leftBand, 64);
+  full.leftBand = 0;
+  EXPECT_EQ(withRange(full, {48, 32}).leftBand, 0);
+}
+
 TEST(ZoneSearch, CheckSearchRangeRefusesRangesBelowTheMinimumOrOddSizes) {
   const StereoParams p;
   EXPECT_NO_THROW(checkSearchRange(p, {16, 48}));
