@@ -52,8 +52,9 @@ def test_zone_search_matches_only_where_the_zone_can_be():
         count = -(-(64 - bottom) // 16) * 16
         assert f["search_range"] == (64 - count, count)
         assert count < 64, "the default rig's zone needs less than the full range"
+        # The run's stereo defaults match the left band (leftBand=16).
         matcher = horopter.StereoMatcher(minDisparity=64 - count, numDisparities=count,
-                                         backend="scalar")
+                                         leftBand=16, backend="scalar")
         expected = matcher.compute(f["left_grey"], f["right_grey"])
         expected[expected == 16 * (64 - count - 1)] = -16
         np.testing.assert_array_equal(expected, f["disparity"])
@@ -92,7 +93,8 @@ def test_folder_source_and_its_errors(tmp_path, grey_pair):
         horopter.imwrite(str(tmp_path / f"right{i}.png"), right)
     frames = list(horopter.Pipeline(f"dir:{tmp_path}", numDisparities=64, backend="scalar"))
     assert len(frames) == 2
-    expected = horopter.StereoMatcher(numDisparities=64, backend="scalar").compute(left, right)
+    expected = horopter.StereoMatcher(numDisparities=64, leftBand=16,  # the run's band
+                                      backend="scalar").compute(left, right)
     np.testing.assert_array_equal(frames[1]["disparity"], expected)
 
 
