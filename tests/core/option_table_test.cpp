@@ -85,6 +85,12 @@ TEST(OptionTable, RulesAcrossOptionsStillHold) {
   p = StereoParams{};
   p.minDisparity = 2000;  // 2000 + 64 does not fit int16 in 1/16 px
   EXPECT_NE(errorOf([&] { validate(p); }).find("fits int16"), std::string::npos);
+  p = StereoParams{};
+  p.leftBand = p.numDisparities + 16;  // in 0..1024, more than the range has
+  EXPECT_NE(errorOf([&] { validate(p); }).find("leftBand must be within 0..numDisparities"),
+            std::string::npos);
+  p.leftBand = p.numDisparities;
+  EXPECT_NO_THROW(validate(p));
   MedianParams m;
   m.kernelSize = 3;
   m.minValidToFill = 10;  // more than the 3x3 window

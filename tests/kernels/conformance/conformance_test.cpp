@@ -496,6 +496,23 @@ std::vector<MatchCase> matchCases() {
   return cases;
 }
 
+// The matcher's inputs from a pattern pair: with `prefiltered`, the pair
+// becomes its x-Sobel prefiltered views (as the front end feeds them);
+// either way the left view's texture image is returned.
+TestImage prefilterForMatching(StereoPair& pair, int cap, bool prefiltered) {
+  const int w = pair.left.view().width, h = pair.left.view().height;
+  TestImage texture(w, h, PixelType::U8C1);
+  if (prefiltered) {
+    TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
+    prefilterXSobel(pair.left.view(), cap, lf.view(), texture.view(), scalarBackend());
+    prefilterXSobel(pair.right.view(), cap, rf.view(), {}, scalarBackend());
+    pair = {std::move(lf), std::move(rf)};
+  } else {
+    prefilterXSobel(pair.left.view(), cap, {}, texture.view(), scalarBackend());
+  }
+  return texture;
+}
+
 void conformMatchBlocks(const Backend& backend) {
   for (const MatchCase& c : matchCases()) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
@@ -507,16 +524,7 @@ void conformMatchBlocks(const Backend& backend) {
       ASSERT_FALSE(matchRegion(w, h, c.p).empty());
       StereoPair pair = patternPair(w, h, c.pattern, c.shift,
                                     seed * 7777 + static_cast<std::uint64_t>(w * 31 + h + c.shift));
-      TestImage texture(w, h, PixelType::U8C1);
-      if (c.prefiltered) {
-        TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
-        prefilterXSobel(pair.left.view(), c.p.preFilterCap, lf.view(), texture.view(),
-                        scalarBackend());
-        prefilterXSobel(pair.right.view(), c.p.preFilterCap, rf.view(), {}, scalarBackend());
-        pair = {std::move(lf), std::move(rf)};
-      } else {
-        prefilterXSobel(pair.left.view(), c.p.preFilterCap, {}, texture.view(), scalarBackend());
-      }
+      const TestImage texture = prefilterForMatching(pair, c.p.preFilterCap, c.prefiltered);
       TestImage refDisparity(w, h, PixelType::S16C1), refWinner(w, h, PixelType::S16C1);
       matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, refDisparity.view(),
                   refWinner.view(), scalarBackend());
@@ -576,6 +584,16 @@ void conformStripedMatch(const Backend& backend, const StereoPair& pair, const T
   }
 }
 
+// A matching case with the guard below the range (step 0: off).
+struct GuardedMatchCase {
+  int w, h;
+  StereoParams p;
+  BelowRangeGuard guard;
+  Pattern pattern;
+  int shift;
+  bool prefiltered;
+};
+
 // Matching with the guard below the range (zone-limited matching): steps
 // from 1 up to past the gap, uniqueness on and off, texture on and off,
 // raw and prefiltered inputs, checked disparities below zero (whose windows
@@ -584,15 +602,7 @@ void conformStripedMatch(const Backend& backend, const StereoPair& pair, const T
 // true match below the range, so that the guard has pixels to remove: the
 // sweep also asserts that it removed some.
 void conformMatchBlocksGuarded(const Backend& backend) {
-  struct GuardCase {
-    int w, h;
-    StereoParams p;
-    BelowRangeGuard guard;
-    Pattern pattern;
-    int shift;
-    bool prefiltered;
-  };
-  std::vector<GuardCase> cases;
+  std::vector<GuardedMatchCase> cases;
   int k = 0;
   for (int step : {1, 2, 3, 5, 40}) {
     for (int ratio : {0, 15, 100}) {
@@ -654,7 +664,7 @@ void conformMatchBlocksGuarded(const Backend& backend) {
     cases.push_back({61, 17, p, {3, 4}, Pattern::Random, 2, true});
   }
   long long removed = 0, rightChanged = 0;
-  for (const GuardCase& c : cases) {
+  for (const GuardedMatchCase& c : cases) {
     const int w = c.w, h = c.h;
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + patternName(c.pattern) +
                  ", shift " + std::to_string(c.shift) + ", guard step " +
@@ -662,16 +672,7 @@ void conformMatchBlocksGuarded(const Backend& backend) {
                  (c.prefiltered ? ", prefiltered" : ", raw") + ", " + describe(c.p));
     StereoPair pair = patternPair(w, h, c.pattern, c.shift,
                                   static_cast<std::uint64_t>(w * 31 + h + c.shift + c.guard.step));
-    TestImage texture(w, h, PixelType::U8C1);
-    if (c.prefiltered) {
-      TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
-      prefilterXSobel(pair.left.view(), c.p.preFilterCap, lf.view(), texture.view(),
-                      scalarBackend());
-      prefilterXSobel(pair.right.view(), c.p.preFilterCap, rf.view(), {}, scalarBackend());
-      pair = {std::move(lf), std::move(rf)};
-    } else {
-      prefilterXSobel(pair.left.view(), c.p.preFilterCap, {}, texture.view(), scalarBackend());
-    }
+    const TestImage texture = prefilterForMatching(pair, c.p.preFilterCap, c.prefiltered);
     TestImage refDisparity(w, h, PixelType::S16C1), refWinner(w, h, PixelType::S16C1);
     matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, c.guard,
                 refDisparity.view(), refWinner.view(), scalarBackend());
@@ -695,15 +696,7 @@ void conformMatchBlocksGuarded(const Backend& backend) {
 // prefiltered inputs, and stripes of rows. The band must have made some
 // pixels valid and changed some right winners, or the sweep tests nothing.
 void conformMatchBlocksLeftBand(const Backend& backend) {
-  struct BandCase {
-    int w, h;
-    StereoParams p;
-    BelowRangeGuard guard;
-    Pattern pattern;
-    int shift;
-    bool prefiltered;
-  };
-  std::vector<BandCase> cases;
+  std::vector<GuardedMatchCase> cases;
   int k = 0;
   const auto add = [&](int w, int h, StereoParams p, BelowRangeGuard guard, int shift) {
     p.uniquenessRatio = std::array{15, 0, 100}[k % 3];
@@ -766,7 +759,7 @@ void conformMatchBlocksLeftBand(const Backend& backend) {
     add(w, 14, p, {2, -10}, 3);
   }
   long long bandValid = 0, rightChanged = 0;
-  for (const BandCase& c : cases) {
+  for (const GuardedMatchCase& c : cases) {
     const int w = c.w, h = c.h;
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " " + patternName(c.pattern) +
                  ", shift " + std::to_string(c.shift) + ", guard step " +
@@ -775,16 +768,7 @@ void conformMatchBlocksLeftBand(const Backend& backend) {
     ASSERT_FALSE(matchRegion(w, h, c.p).empty());
     StereoPair pair = patternPair(w, h, c.pattern, c.shift,
                                   static_cast<std::uint64_t>(w * 37 + h + c.shift + c.p.leftBand));
-    TestImage texture(w, h, PixelType::U8C1);
-    if (c.prefiltered) {
-      TestImage lf(w, h, PixelType::U8C1), rf(w, h, PixelType::U8C1);
-      prefilterXSobel(pair.left.view(), c.p.preFilterCap, lf.view(), texture.view(),
-                      scalarBackend());
-      prefilterXSobel(pair.right.view(), c.p.preFilterCap, rf.view(), {}, scalarBackend());
-      pair = {std::move(lf), std::move(rf)};
-    } else {
-      prefilterXSobel(pair.left.view(), c.p.preFilterCap, {}, texture.view(), scalarBackend());
-    }
+    const TestImage texture = prefilterForMatching(pair, c.p.preFilterCap, c.prefiltered);
     TestImage refDisparity(w, h, PixelType::S16C1), refWinner(w, h, PixelType::S16C1);
     matchBlocks(pair.left.view(), pair.right.view(), texture.view(), c.p, c.guard,
                 refDisparity.view(), refWinner.view(), scalarBackend());
