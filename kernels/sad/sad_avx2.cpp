@@ -415,6 +415,17 @@ class Matcher {
   static constexpr int kChunk = 4 * kLanes;
   // Pixels per tile of a row pass (a multiple of kChunk).
   static constexpr int kTile = 2 * kChunk;
+  // Pixels each pair of groups sweeps ahead of the pair below it (a
+  // multiple of 16). Right pixel xr reads lane k at left pixel xr + k, so
+  // with every lane swept tile by tile a block's candidates were written
+  // over 64 + 127 pixels at 128 lanes (about 97 KB of costs and column sums,
+  // three times L1) and half of decideRight's reads missed it. With pair p
+  // 32 p pixels ahead, lane k's costs at pixel x are written at about sweep
+  // position x - k, so a block's candidates come from the last 64 + 31
+  // pixels swept; the left decisions, which read every lane of a pixel,
+  // reach back as far in turn. 1280x720/d128/w15, one thread: ratio to
+  // cv::StereoBM 3.22 -> 3.35 (kernels/README.md); 16, 48 and 64 gained less.
+  static constexpr int kPairLead = 32;
   // numDisparities <= 1024, and as many below the range for a folded guard.
   static constexpr int kMaxGroups = 2048 / kLanes;
 
@@ -888,26 +899,49 @@ class Matcher {
     const int xrLow = x0_ - (minD_ + count_ - 1);
     const int xrHigh = x1_ - 1 - minD_;  // inclusive
     int xr0 = xrLow;
+    // Pixels each pair's sweep has costed so far (the unpaired group last).
+    int swept[kMaxGroups / 2 + 1] = {};
+    const int sweeps = pairs + (odd ? 1 : 0);
+    const int guardLanes = guardGroups_ * kLanes;
     for (int i0 = 0; i0 < pixels_; i0 += kTile) {
       const int i1 = std::min(i0 + kTile, pixels_);
-      // The first row (no slide) has no differences of rows to take.
-      if (kSlide && narrow_) {
-        for (int p = 0; p < pairs; ++p)
-          sweepPair<kSlide, true>(p, state[p], i0, i1);
-        if (odd) sweepLast<kSlide, true>(state[pairs], i0, i1);
-      } else {
-        for (int p = 0; p < pairs; ++p)
-          sweepPair<kSlide, false>(p, state[p], i0, i1);
-        if (odd) sweepLast<kSlide, false>(state[pairs], i0, i1);
-      }
+      // Pair p sweeps up to p * kPairLead pixels past the tile (see
+      // kPairLead); the first row (no slide) has no differences of rows.
+      const auto sweepAll = [&](auto narrow) HOROPTER_AVX2_TARGET {
+        constexpr bool kNarrow = decltype(narrow)::value;
+        for (int p = 0; p < sweeps; ++p) {
+          const int to = std::min(i1 + p * kPairLead, pixels_);
+          if (to <= swept[p]) continue;
+          if (p < pairs)
+            sweepPair<kSlide, kNarrow>(p, state[p], swept[p], to);
+          else
+            sweepLast<kSlide, kNarrow>(state[p], swept[p], to);
+          swept[p] = to;
+        }
+      };
+      if (kSlide && narrow_)
+        sweepAll(std::true_type{});
+      else
+        sweepAll(std::false_type{});
+      // Whether right pixels [xr, xr + kChunk) have every cost they read:
+      // lane k of right pixel xr is left pixel xr + minD + k - x0.
+      const auto rightReady = [&](int xr) {
+        // A folded guard's lanes are final only where fixGuardTile has been.
+        if (guardGroups_ > 0 && i1 < pixels_ && xr + kChunk - 1 + minD_ - 1 - x0_ >= i1)
+          return false;
+        for (int p = 0; p < sweeps; ++p) {
+          if (swept[p] >= pixels_) continue;  // past the last pixel: "no cost"
+          const int lastLane = std::min(2 * (p + 1), sweepGroups_) * kLanes - 1 - guardLanes;
+          if (xr + kChunk - 1 + minD_ + lastLane - x0_ >= swept[p]) return false;
+        }
+        return true;
+      };
       if (guardGroups_ > 0) fixGuardTile(i0, i1);
       const auto decide = [&](auto shift) HOROPTER_AVX2_TARGET {
         constexpr int kShift = decltype(shift)::value;
         decideLeft<kShift>(outDisparity, i0, i1);
-        // Right pixel xr reads pixels up to xr + maxD - x0: those of the
-        // blocks below are all swept (past the last pixel, "no cost").
         for (; xr0 <= xrHigh; xr0 += kChunk) {
-          if (i1 < pixels_ && xr0 + kChunk - 1 + minD_ + count_ - 1 - x0_ >= i1) break;
+          if (!rightReady(xr0)) break;
           decideRight<kShift>(outWinner, xr0, xrHigh);
         }
       };
