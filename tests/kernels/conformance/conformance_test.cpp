@@ -788,12 +788,39 @@ void conformMatchBlocksLeftBand(const Backend& backend) {
 // ---------------------------------------------------------------------------
 // Left-right check
 
+// Surfaces: disparities that drift by a pixel or so along a row, with steps
+// of up to `step` px, invalid pixels, and values near both int16 ends where
+// `extremes` (the AVX2 check looks up 32 right pixels at a time where the
+// row is this smooth, and gathers elsewhere).
+TestImage surfaceDisparityMap(int width, int height, const StereoParams& p, std::uint64_t seed,
+                              int step, bool extremes) {
+  TestImage map(width, height, PixelType::S16C1);
+  Rng rng(seed);
+  const std::int16_t invalid = invalidDisparity(p);
+  for (int y = 0; y < height; ++y) {
+    int v = rng.uniform(p.minDisparity, p.minDisparity + p.numDisparities - 1) * kDisparityScale;
+    for (int x = 0; x < width; ++x) {
+      if (rng.chance(3)) v += rng.uniform(-step, step) * kDisparityScale;
+      v += rng.uniform(-12, 12);
+      v = std::clamp(v, -32768, 32767);
+      std::int16_t value = static_cast<std::int16_t>(v);
+      if (rng.chance(5)) value = invalid;
+      if (extremes && rng.chance(2))
+        value = static_cast<std::int16_t>(rng.chance(50) ? 32767 - rng.uniform(0, 8)
+                                                         : -32768 + rng.uniform(0, 8));
+      map.at<std::int16_t>(x, y) = value;
+    }
+  }
+  return map;
+}
+
 void conformLeftRightCheck(const Backend& backend) {
   int n = 0;
   for (int minD : {0, -8, 4}) {
-    for (int maxDiff : {-1, 0, 1, 2, 7}) {
-      for (int source = 0; source < 2; ++source) {  // random maps, matcher output
-        for (int w : {17, 33, 64, 65}) {
+    for (int maxDiff : {-1, 0, 1, 2, 7, 2047}) {
+      // Random maps, matcher output, surfaces (near the int16 ends too).
+      for (int source = 0; source < 4; ++source) {
+        for (int w : {17, 31, 32, 33, 64, 65, 200}) {
           ++n;
           StereoParams p;
           p.minDisparity = minD;
@@ -807,6 +834,13 @@ void conformLeftRightCheck(const Backend& backend) {
             d = randomDisparityMap(w, h, p, static_cast<std::uint64_t>(n), 20);
             wr = randomImage(w, h, PixelType::S16C1, static_cast<std::uint64_t>(n + 500), minD - 1,
                              minD + 15);
+          } else if (source >= 2) {
+            const bool extremes = source == 3;
+            d = surfaceDisparityMap(w, h, p, static_cast<std::uint64_t>(n), 20, extremes);
+            wr = extremes ? randomImage(w, h, PixelType::S16C1, static_cast<std::uint64_t>(n + 500),
+                                        -32768, 32767)
+                          : randomImage(w, h, PixelType::S16C1, static_cast<std::uint64_t>(n + 500),
+                                        minD - 1, minD + 15);
           } else {
             if (w < 5 + 15 + std::max(minD, 0) - std::min(minD, 0)) continue;
             const StereoPair pair =
@@ -816,8 +850,9 @@ void conformLeftRightCheck(const Backend& backend) {
             matchBlocks(pair.left.view(), pair.right.view(), {}, p, d.view(), wr.view(),
                         scalarBackend());
           }
-          SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) +
-                       (source ? " matched" : " random") + ", " + describe(p));
+          const char* const sources[] = {" random", " matched", " surface", " surface, extremes"};
+          SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + sources[source] + ", " +
+                       describe(p));
           TestImage ref = d.clone();
           leftRightCheck(ref.view(), wr.view(), p, scalarBackend());
           for (const Layout& layout : kLayouts) {
