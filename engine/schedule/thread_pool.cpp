@@ -1,10 +1,31 @@
 #include "schedule/thread_pool.hpp"
 
+#include <chrono>
 #include <string>
 
 #include "horopter/core/error.hpp"
 
 namespace horopter {
+
+namespace {
+
+// Polls `ready` for up to ThreadPool::kSpinMicroseconds; true once it holds.
+template <typename Ready>
+bool pollFor(const Ready& ready) {
+  using Clock = std::chrono::steady_clock;
+  const auto until = Clock::now() + std::chrono::microseconds(ThreadPool::kSpinMicroseconds);
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    }
+    if (Clock::now() >= until) return ready();
+  }
+}
+
+}  // namespace
 
 ThreadPool::ThreadPool(int threads) {
   if (threads < 1 || threads > 256)
@@ -37,13 +58,17 @@ void ThreadPool::drain() {
       if (!error_) error_ = std::current_exception();
     }
     lock.lock();
-    if (++finished_ == count_) done_.notify_all();
+    if (++finished_ == count_) {
+      batchDone_.store(true, std::memory_order_release);
+      done_.notify_all();
+    }
   }
 }
 
 void ThreadPool::workerLoop() {
   unsigned seen = 0;
   for (;;) {
+    pollFor([&] { return published_.load(std::memory_order_acquire) != seen; });
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -69,9 +94,12 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
     finished_ = 0;
     error_ = nullptr;
     ++generation_;
+    batchDone_.store(false, std::memory_order_relaxed);
+    published_.store(generation_, std::memory_order_release);
   }
   wake_.notify_all();
   drain();
+  pollFor([&] { return batchDone_.load(std::memory_order_acquire); });
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [&] { return finished_ == count_; });
   task_ = nullptr;

@@ -1,8 +1,18 @@
 // A fixed pool of worker threads for splitting one frame's kernels into
 // stripes. The calling thread works too, so a pool of N threads starts N - 1
 // workers and a pool of 1 starts none.
+//
+// A frame's kernels come as batches back to back (prefilter, match,
+// left-right check, ...), some a tenth of a millisecond long, while waking a
+// thread blocked on a condition variable takes tens of microseconds. So a
+// worker that runs out of tasks, and the caller waiting for the batch's end,
+// poll for up to kSpinMicroseconds before they block (as OpenCV's and TBB's
+// pools do). On 2 cores, ratio to cv::StereoBM at two threads (4 alternating
+// runs): 640x480/d64/w9 4.80 -> 5.44, 1280x720/d128/w15 3.44 -> 3.52; 50 us
+// gave 5.34 and 3.48.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -28,6 +38,10 @@ class ThreadPool {
   // here (after every task has finished). Not reentrant: one call at a time.
   void run(int count, const std::function<void(int)>& task);
 
+  // How long an idle thread polls for work, or the caller for the batch's
+  // end, before it blocks.
+  static constexpr int kSpinMicroseconds = 200;
+
  private:
   void workerLoop();
   void drain();  // takes and runs tasks of the current batch until none is left
@@ -42,6 +56,10 @@ class ThreadPool {
   int finished_ = 0;
   unsigned generation_ = 0;
   bool stopping_ = false;
+  // Mirrors of generation_ and of "finished_ == count_" for the polls, which
+  // do not take the mutex.
+  std::atomic<unsigned> published_{0};
+  std::atomic<bool> batchDone_{true};
   std::exception_ptr error_;
 };
 

@@ -48,6 +48,31 @@ TEST(ThreadPool, RethrowsATaskErrorAfterEveryTaskFinished) {
   EXPECT_EQ(again.load(), 5);
 }
 
+// Batches back to back, as a frame's kernels come: the workers and the
+// caller poll between them instead of blocking (ThreadPool::kSpinMicroseconds).
+TEST(ThreadPool, RunsEveryTaskOfManyShortBatchesOnce) {
+  ThreadPool pool(3);
+  std::vector<std::atomic<int>> hits(7);
+  for (int batch = 1; batch <= 2000; ++batch) {
+    pool.run(7, [&](int i) { hits[static_cast<std::size_t>(i)]++; });
+    for (int i = 0; i < 7; ++i)
+      ASSERT_EQ(hits[static_cast<std::size_t>(i)].load(), batch) << "task " << i;
+  }
+}
+
+// A pool destroyed while its workers still poll for the next batch, and one
+// destroyed before it ran any: both join (a hang fails the test's timeout).
+TEST(ThreadPool, JoinsItsWorkersWhileTheyPoll) {
+  for (int round = 0; round < 50; ++round) {
+    ThreadPool pool(2);
+    if (round % 2 == 0) {
+      std::atomic<int> ran{0};
+      pool.run(2, [&](int) { ran++; });
+      EXPECT_EQ(ran.load(), 2);
+    }
+  }
+}
+
 TEST(ThreadPool, RejectsAbsurdThreadCounts) {
   EXPECT_THROW(ThreadPool(0), Error);
   EXPECT_THROW(ThreadPool(-2), Error);
