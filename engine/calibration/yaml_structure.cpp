@@ -50,6 +50,12 @@ void checkOneYamlDocument(const std::string& text, const std::string& path) {
       refuse(path, lineNumber,
              "text after the document end '...' of line " + std::to_string(documentEnd));
     if (content.substr(0, 3) == "...") {
+      // OpenCV takes any line that starts with "..." for the end and skips
+      // those three characters, so what follows them on the line counts as
+      // text after the end ("...-" hangs it as "...\n-" does).
+      const std::size_t after = content.find_first_not_of(' ', 3);
+      if (after != std::string_view::npos && content[after] != '#')
+        refuse(path, lineNumber, "text after the document end '...' on its line");
       documentEnd = lineNumber;
       continue;
     }

@@ -468,8 +468,8 @@ TEST(CalibrationFormats, MalformedRosFilesNameTheField) {
 // document it skips three characters, and a lone '-' where it lands spins
 // it): refused before OpenCV sees it, naming the line. The first input is
 // what tests/fuzz/calibration_file_fuzz.cpp found, the second the smallest
-// trigger, the last a later find (without the check, each but the NUL byte's
-// hangs this test).
+// trigger, the others later finds (without the check, each but the NUL
+// byte's hangs this test).
 TEST(CalibrationFormats, TextThatWouldHangOpenCvsYamlParserIsRefused) {
   const std::string dir = scratchDir("yaml_hang");
   const std::string path = dir + "/stereo.yml";
@@ -477,6 +477,9 @@ TEST(CalibrationFormats, TextThatWouldHangOpenCvsYamlParserIsRefused) {
       {"%YAML:1.0\n a:[3,\n   -]\n-\n]", {"line 4", "indented 0 spaces", "first field's 1"}},
       {"%YAML:1.0\na: 1\n...\n-\n", {"line 4", "after the document end '...' of line 3"}},
       {"a: 1\n...\n-\n", {"line 3", "document end"}},  // no directive: the loader adds one
+      // Found by CI's fuzzing on 2026-12-05: the '-' on the end's own line.
+      {"q: 1\n...-\n\n", {"line 2", "after the document end '...' on its line"}},
+      {"%YAML:1.0\nK1: 1\n... -\n", {"line 3", "on its line"}},
       {"%YAML:1.0\n---\nK1: 1\n---\n-\n", {"line 4", "a second YAML document"}},
       {"%YAML:1.0\n--- K1: 1\n-\n", {"line 3", "first field's 4"}},
       {std::string("%YAML:1.0\nK1: 1\0\n-\n", 17), {"NUL byte", "offset 15"}},
