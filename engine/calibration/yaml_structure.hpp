@@ -16,8 +16,8 @@ namespace horopter::detail {
 // Throws horopter::Error naming `path` and the line when `text` (the file's
 // bytes, YAML as OpenCV's reader takes it) holds a NUL byte, a "..."
 // document end with more after it (on its line too), a second "---"
-// document, or a line
-// indented less than the first field (which ends OpenCV's top level there).
+// document, or a line indented less than the first field (which ends
+// OpenCV's top level there).
 void checkOneYamlDocument(const std::string& text, const std::string& path);
 
 }  // namespace horopter::detail

@@ -125,6 +125,56 @@ class GatherStep {
   __m256i noWinner_, maxDiff_, width_;
 };
 
+// The check of one row, 16 pixels at x (<= width - 16) from a window of
+// 32 right pixels; false, having changed nothing, where the pixels that
+// look up reach further (the row needs at least 32 pixels).
+class WindowStep {
+ public:
+  HOROPTER_AVX2_TARGET WindowStep(const std::int16_t* wr, int width, std::int16_t invalid,
+                                  int noWinner, int maxDiff)
+      : wr_(wr),
+        width_(width),
+        invalid_(_mm256_set1_epi16(invalid)),
+        noWinner_(_mm256_set1_epi16(static_cast<std::int16_t>(noWinner))),
+        // |dl - WR| > maxDiff iff (unsigned) |dl - WR| >= maxDiff + 1.
+        farFrom_(_mm256_set1_epi16(static_cast<std::int16_t>(maxDiff + 1))),
+        widthV_(_mm256_set1_epi16(static_cast<std::int16_t>(width))) {}
+
+  HOROPTER_AVX2_TARGET bool operator()(std::int16_t* d, int x) const {
+    const __m256i one = _mm256_set1_epi16(1);
+    const __m256i all = _mm256_set1_epi16(-1);
+    const __m256i lane = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    auto* at = reinterpret_cast<__m256i*>(d + x);
+    const __m256i dv = _mm256_loadu_si256(at);
+    const __m256i dl =
+        _mm256_add_epi16(_mm256_srai_epi16(dv, 4), _mm256_and_si256(_mm256_srli_epi16(dv, 3), one));
+    const __m256i xr = _mm256_sub_epi16(
+        _mm256_add_epi16(_mm256_set1_epi16(static_cast<std::int16_t>(x)), lane), dl);
+    const __m256i use =
+        _mm256_andnot_si256(_mm256_cmpeq_epi16(dv, invalid_),
+                            _mm256_andnot_si256(_mm256_cmpgt_epi16(_mm256_setzero_si256(), xr),
+                                                _mm256_cmpgt_epi16(widthV_, xr)));
+    if (_mm256_testz_si256(use, use)) return true;  // nothing to look up
+    // The used lanes' least and largest xr (both in [0, width)).
+    const int low = leastLane(_mm256_or_si256(xr, _mm256_xor_si256(use, all)));
+    const int high = 0xFFFF - leastLane(_mm256_xor_si256(_mm256_and_si256(xr, use), all));
+    if (high - low >= 32) return false;
+    const int base = std::min(low, width_ - 32);
+    const __m256i w = lookup32(
+        wr_ + base, _mm256_sub_epi16(xr, _mm256_set1_epi16(static_cast<std::int16_t>(base))));
+    const __m256i hasWinner = _mm256_andnot_si256(_mm256_cmpeq_epi16(w, noWinner_), use);
+    const __m256i diff = _mm256_abs_epi16(_mm256_subs_epi16(dl, w));
+    const __m256i tooFar = _mm256_cmpeq_epi16(_mm256_max_epu16(diff, farFrom_), diff);
+    _mm256_storeu_si256(at, _mm256_blendv_epi8(dv, invalid_, _mm256_and_si256(hasWinner, tooFar)));
+    return true;
+  }
+
+ private:
+  const std::int16_t* wr_;
+  int width_;
+  __m256i invalid_, noWinner_, farFrom_, widthV_;
+};
+
 }  // namespace
 
 HOROPTER_AVX2_TARGET void leftRightCheck(const ImageView& disparity,
@@ -134,15 +184,7 @@ HOROPTER_AVX2_TARGET void leftRightCheck(const ImageView& disparity,
   const std::int16_t invalid = invalidDisparity(params);
   const int noWinner = params.minDisparity - 1;
   const int width = disparity.width;
-  const bool window = width >= 32 && width < kMaxWindowWidth;
-  const __m256i invalid16 = _mm256_set1_epi16(invalid);
-  const __m256i noWinner16 = _mm256_set1_epi16(static_cast<std::int16_t>(noWinner));
-  // |dl - WR| > maxDiff iff (unsigned) |dl - WR| >= maxDiff + 1.
-  const __m256i farFrom = _mm256_set1_epi16(static_cast<std::int16_t>(params.disp12MaxDiff + 1));
-  const __m256i width16 = _mm256_set1_epi16(static_cast<std::int16_t>(width));
-  const __m256i one = _mm256_set1_epi16(1);
-  const __m256i all = _mm256_set1_epi16(-1);
-  const __m256i lane = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const bool windows = width >= 32 && width < kMaxWindowWidth;
   for (int y = rows.begin; y < rows.end; ++y) {
     auto* d = disparity.row<std::int16_t>(y);
     const auto* wr = winnerRight.row<std::int16_t>(y);
@@ -150,42 +192,14 @@ HOROPTER_AVX2_TARGET void leftRightCheck(const ImageView& disparity,
       scalarRow(d, wr, width, invalid, noWinner, params.disp12MaxDiff);
       continue;
     }
+    const WindowStep window(wr, width, invalid, noWinner, params.disp12MaxDiff);
     const GatherStep gather(wr, width, invalid, noWinner, params.disp12MaxDiff);
     for (int x = 0;; x += kStep) {
       x = std::min(x, width - kStep);
-      if (window) {
-        auto* at = reinterpret_cast<__m256i*>(d + x);
-        const __m256i dv = _mm256_loadu_si256(at);
-        const __m256i dl = _mm256_add_epi16(_mm256_srai_epi16(dv, 4),
-                                            _mm256_and_si256(_mm256_srli_epi16(dv, 3), one));
-        const __m256i xr = _mm256_sub_epi16(
-            _mm256_add_epi16(_mm256_set1_epi16(static_cast<std::int16_t>(x)), lane), dl);
-        const __m256i use =
-            _mm256_andnot_si256(_mm256_cmpeq_epi16(dv, invalid16),
-                                _mm256_andnot_si256(_mm256_cmpgt_epi16(_mm256_setzero_si256(), xr),
-                                                    _mm256_cmpgt_epi16(width16, xr)));
-        if (_mm256_testz_si256(use, use)) {
-          if (x == width - kStep) break;
-          continue;  // nothing to look up
-        }
-        // The used lanes' least and largest xr (both in [0, width)).
-        const int low = leastLane(_mm256_or_si256(xr, _mm256_xor_si256(use, all)));
-        const int high = 0xFFFF - leastLane(_mm256_xor_si256(_mm256_and_si256(xr, use), all));
-        if (high - low < 32) {
-          const int base = std::min(low, width - 32);
-          const __m256i w = lookup32(
-              wr + base, _mm256_sub_epi16(xr, _mm256_set1_epi16(static_cast<std::int16_t>(base))));
-          const __m256i hasWinner = _mm256_andnot_si256(_mm256_cmpeq_epi16(w, noWinner16), use);
-          const __m256i diff = _mm256_abs_epi16(_mm256_subs_epi16(dl, w));
-          const __m256i tooFar = _mm256_cmpeq_epi16(_mm256_max_epu16(diff, farFrom), diff);
-          _mm256_storeu_si256(
-              at, _mm256_blendv_epi8(dv, invalid16, _mm256_and_si256(hasWinner, tooFar)));
-          if (x == width - kStep) break;
-          continue;
-        }
+      if (!windows || !window(d, x)) {
+        gather(d, x);
+        gather(d, x + kStep / 2);
       }
-      gather(d, x);
-      gather(d, x + kStep / 2);
       if (x == width - kStep) break;
     }
   }
